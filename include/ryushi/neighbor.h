@@ -1,0 +1,77 @@
+/* ryushi — neighbour search: a cell list built by counting sort (the seed's bucket sort) and a
+ * brute-force O(N^2) reference used as a test oracle.
+ *
+ * Both produce the same CSR neighbour list: for particle i, its neighbours are
+ * nl->j[nl->offset[i] .. nl->offset[i+1]-1], every j != i with |x_i - x_j| < radius (distance
+ * by minimum image in periodic directions), sorted by increasing j. */
+#ifndef RYUSHI_NEIGHBOR_H
+#define RYUSHI_NEIGHBOR_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ryushi/status.h"
+
+/* The domain: particles are expected inside [lo, hi) in periodic directions; in the others
+ * they may lie outside (they are clamped into the edge cells). */
+typedef struct ry_box {
+    int dim;
+    double lo[3], hi[3];
+    int periodic[3];
+} ry_box;
+
+/* Minimum-image correction of a separation vector dx (x_i - x_j) in periodic directions. */
+static inline void ry_box_min_image(const ry_box *b, double *dx) {
+    for (int d = 0; d < b->dim; ++d) {
+        if (b->periodic[d]) {
+            double L = b->hi[d] - b->lo[d];
+            if (dx[d] > 0.5 * L)
+                dx[d] -= L;
+            else if (dx[d] < -0.5 * L)
+                dx[d] += L;
+        }
+    }
+}
+
+typedef struct ry_cell_list {
+    int dim;
+    double lo[3];       /* origin of cell (0,0,0) */
+    double cell[3];     /* cell edge per direction (>= radius) */
+    int ncell[3];       /* cells per direction (1 in unused directions) */
+    size_t ncells;      /* product of ncell */
+    size_t n;           /* particles binned */
+    size_t *start;      /* ncells + 1 entries: particles of cell c are order[start[c]..start[c+1]) */
+    uint32_t *order;    /* particle indices sorted by cell (stable: by index within a cell) */
+    uint32_t *cell_of;  /* cell index of each particle */
+    size_t cap_cells, cap_n;
+} ry_cell_list;
+
+typedef struct ry_nlist {
+    size_t n;          /* particles */
+    size_t *offset;    /* n + 1 entries */
+    uint32_t *j;       /* offset[n] entries */
+    size_t cap_n, cap_j;
+} ry_nlist;
+
+/* Bins n particles (coordinates x[0..dim-1], each an array of n) into cells of edge >= radius
+ * covering the box (the bounding box of the particles in non-periodic directions). Reuses the
+ * memory of cl between calls; zero-initialise cl before the first call. O(n) counting sort. */
+ry_status ry_cells_build(ry_cell_list *cl, const ry_box *box, double radius, size_t n,
+                         const double *const x[3], ry_error *err);
+void ry_cells_free(ry_cell_list *cl);
+
+/* Neighbour list from a built cell list (OpenMP-parallel, deterministic). */
+ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_box *box,
+                               double radius, size_t n, const double *const x[3],
+                               ry_error *err);
+/* The same list by testing every pair: O(n^2), for tests and benchmarks only. */
+ry_status ry_nlist_build_brute(ry_nlist *nl, const ry_box *box, double radius, size_t n,
+                               const double *const x[3], ry_error *err);
+void ry_nlist_free(ry_nlist *nl);
+
+/* Memory in bytes held per particle by the cell list and the neighbour list (for reports). */
+double ry_cells_bytes_per_particle(const ry_cell_list *cl);
+double ry_nlist_bytes_per_particle(const ry_nlist *nl);
+
+#endif

@@ -1,0 +1,24 @@
+#!/bin/sh
+# Installs the Debian packages ryushi needs to build, test and draw its pictures.
+# Idempotent: packages already present are skipped; nothing is downloaded otherwise.
+set -eu
+PKGS="cmake make gcc pkg-config libfyaml-dev libcmocka-dev libcairo2-dev clang-format"
+missing=""
+for p in $PKGS; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing="$missing $p"
+  fi
+done
+if [ -z "$missing" ]; then
+  exit 0
+fi
+echo "install-deps: installing$missing"
+SUDO=""
+if [ "$(id -u)" != "0" ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "install-deps: need root (or sudo) to install:$missing" >&2; exit 1; fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq || true
+# shellcheck disable=SC2086
+$SUDO apt-get install -y -qq --no-install-recommends $missing
