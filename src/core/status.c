@@ -28,7 +28,13 @@ void ry_error_prefix(ry_error *err, const char *fmt, ...) {
     vsnprintf(head, sizeof head, fmt, ap);
     va_end(ap);
     memcpy(old, err->msg, sizeof old);
-    snprintf(err->msg, sizeof err->msg, "%s%s", head, old);
+    size_t n = strlen(head);
+    if (n >= sizeof err->msg) n = sizeof err->msg - 1;
+    memcpy(err->msg, head, n);
+    size_t m = strlen(old);
+    if (m > sizeof err->msg - 1 - n) m = sizeof err->msg - 1 - n;
+    memcpy(err->msg + n, old, m);
+    err->msg[n + m] = '\0';
 }
 
 void ry_error_clear(ry_error *err) {
