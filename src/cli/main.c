@@ -1,7 +1,274 @@
-/* The ryushi command-line program (placeholder until the CLI lands). */
+/* The ryushi command-line program: run, info, bench, validate, plot. */
+#define _POSIX_C_SOURCE 200809L
+#include <omp.h>
+#include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
-int main(void) {
-    puts("ryushi " RY_VERSION);
+#include "cli/cli.h"
+#include "ryushi/case.h"
+#include "ryushi/sim.h"
+
+static volatile sig_atomic_t stop_requested = 0;
+
+static void on_signal(int sig) {
+    (void)sig;
+    stop_requested = 1;
+}
+
+static void usage(FILE *fp) {
+    fprintf(fp,
+            "ryushi %s — meshfree particle methods (SPH, MPS) for fluids and soft solids\n"
+            "\n"
+            "usage:\n"
+            "  ryushi run CASE [-o DIR] [--threads N] [--set KEY=VALUE]...\n"
+            "        run a case file; output (VTK .vtp/.pvd, series.csv, case_resolved.yaml)\n"
+            "        goes to DIR (default: the case's output.folder)\n"
+            "  ryushi info CASE [--set KEY=VALUE]...\n"
+            "        set the case up and report particles, memory and methods without running\n"
+            "  ryushi bench neighbors [--quick] [--threads N]\n"
+            "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
+            "  ryushi plot kernels -o FILE.png\n"
+            "        the Lucy and Gaussian kernels and their derivatives (seed 000)\n"
+            "  ryushi schemes | probes\n"
+            "        list the schemes and measured quantities a case can name\n"
+            "  ryushi --help | --version\n"
+            "\n"
+            "KEY is a dotted path into the case file, e.g. --set time.end=0.3 or\n"
+            "--set bodies[0].hi=[0.25,0.5]. Exit codes: 0 success, 1 internal error,\n"
+            "2 bad input, 3 i/o error, 4 unstable run, 130 interrupted.\n",
+            RY_VERSION);
+}
+
+static int fail(const ry_error *err) {
+    fprintf(stderr, "ryushi: %s: %s\n", ry_status_name(err->code), err->msg);
+    return ry_status_exit_code(err->code);
+}
+
+static int bad_usage(const char *fmt, const char *arg) {
+    fprintf(stderr, "ryushi: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, "\n(see ryushi --help)\n");
+    return 2;
+}
+
+typedef struct run_args {
+    const char *case_path;
+    const char *out_dir;
+    int threads;
+    int nset;
+    const char **sets;
+    int quick;
+} run_args;
+
+/* Parses CASE, -o DIR, --threads N, --set K=V, --quick. */
+static int parse_args(int argc, char **argv, int first, run_args *a, int need_case) {
+    memset(a, 0, sizeof *a);
+    a->sets = calloc((size_t)argc, sizeof *a->sets);
+    if (!a->sets) return bad_usage("%s", "out of memory");
+    for (int i = first; i < argc; ++i) {
+        const char *s = argv[i];
+        if ((strcmp(s, "-o") == 0 || strcmp(s, "--output") == 0) && i + 1 < argc) {
+            a->out_dir = argv[++i];
+        } else if (strcmp(s, "--threads") == 0 && i + 1 < argc) {
+            char *end;
+            long t = strtol(argv[++i], &end, 10);
+            if (*end || t < 1 || t > 1024)
+                return bad_usage("--threads: expected a whole number from 1 to 1024, got '%s'",
+                                 argv[i]);
+            a->threads = (int)t;
+        } else if (strcmp(s, "--set") == 0 && i + 1 < argc) {
+            a->sets[a->nset++] = argv[++i];
+        } else if (strncmp(s, "--set=", 6) == 0) {
+            a->sets[a->nset++] = s + 6;
+        } else if (strcmp(s, "--quick") == 0) {
+            a->quick = 1;
+        } else if (s[0] == '-' && s[1] != '\0') {
+            return bad_usage("unknown or incomplete option '%s'", s);
+        } else if (!a->case_path && need_case) {
+            a->case_path = s;
+        } else {
+            return bad_usage("unexpected argument '%s'", s);
+        }
+    }
+    if (need_case && !a->case_path) return bad_usage("%s", "a case file is required");
+    if (a->threads > 0) omp_set_num_threads(a->threads);
     return 0;
+}
+
+static ry_status load_case(const run_args *a, ry_case **c, ry_error *err) {
+    RY_TRY(ry_case_load(c, a->case_path, err));
+    for (int i = 0; i < a->nset; ++i) {
+        ry_status st = ry_case_override(*c, a->sets[i], err);
+        if (st != RY_OK) {
+            ry_case_free(*c);
+            *c = NULL;
+            return st;
+        }
+    }
+    return RY_OK;
+}
+
+typedef struct progress_ctx {
+    int tty;
+} progress_ctx;
+
+static void fmt_duration(char *buf, size_t size, double s) {
+    if (s < 60)
+        snprintf(buf, size, "%.0fs", s);
+    else if (s < 3600)
+        snprintf(buf, size, "%dm%02ds", (int)(s / 60), (int)s % 60);
+    else
+        snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
+}
+
+static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
+    const progress_ctx *p = ctx;
+    char e[32];
+    fmt_duration(e, sizeof e, eta);
+    if (p->tty) {
+        fprintf(stderr, "\r  t = %.4g / %.4g s  step %ld  dt = %.3g s  %.3g particle-steps/s  "
+                        "ETA %s   ",
+                sim->t, sim->t_end, sim->step, sim->dt, rate, e);
+        fflush(stderr);
+    } else {
+        fprintf(stdout, "progress t=%.6g t_end=%.6g step=%ld dt=%.4g particle_steps_per_s=%.4g "
+                        "eta_s=%.0f\n",
+                sim->t, sim->t_end, sim->step, sim->dt, rate, eta);
+        fflush(stdout);
+    }
+}
+
+static int cmd_run(int argc, char **argv) {
+    run_args a;
+    int rc = parse_args(argc, argv, 2, &a, 1);
+    if (rc) {
+        free(a.sets);
+        return rc;
+    }
+    ry_error err = {0};
+    ry_case *c = NULL;
+    ry_sim sim;
+    memset(&sim, 0, sizeof sim);
+    ry_status st = load_case(&a, &c, &err);
+    if (st == RY_OK) st = ry_sim_setup(&sim, c, a.out_dir, &err);
+    if (st == RY_OK) st = ry_sim_open_output(&sim, c, &err);
+    if (st != RY_OK) {
+        rc = fail(&err);
+        ry_sim_free(&sim);
+        ry_case_free(c);
+        free(a.sets);
+        return rc;
+    }
+    progress_ctx pc = {isatty(STDERR_FILENO)};
+    printf("ryushi %s: case %s, %s, %dD, %zu particles, %d thread(s), output in %s\n",
+           RY_VERSION, a.case_path, sim.scheme->name, sim.dim, sim.ps.n, omp_get_max_threads(),
+           sim.out_dir);
+    fflush(stdout);
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    ry_run_hooks hooks = {on_progress, &pc, pc.tty ? 0.5 : 10.0, &stop_requested};
+    ry_run_stats stats = {0};
+    st = ry_sim_run(&sim, &hooks, &stats, &err);
+    if (pc.tty) fprintf(stderr, "\n");
+    if (st != RY_OK) rc = fail(&err);
+    printf("summary status=%s steps=%ld particles=%zu t=%.6g wall_s=%.3f "
+           "particle_steps_per_s=%.4g threads=%d outputs=%d output=%s\n",
+           st == RY_OK ? "ok" : ry_status_name(st), stats.steps, sim.ps.n, sim.t, stats.wall_s,
+           stats.particle_steps_per_s, omp_get_max_threads(), sim.output_index, sim.out_dir);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+    free(a.sets);
+    return rc;
+}
+
+static int cmd_info(int argc, char **argv) {
+    run_args a;
+    int rc = parse_args(argc, argv, 2, &a, 1);
+    if (rc) {
+        free(a.sets);
+        return rc;
+    }
+    ry_error err = {0};
+    ry_case *c = NULL;
+    ry_sim sim;
+    memset(&sim, 0, sizeof sim);
+    ry_status st = load_case(&a, &c, &err);
+    if (st == RY_OK) st = ry_sim_setup(&sim, c, a.out_dir, &err);
+    if (st == RY_OK) st = ry_sim_neighbors(&sim, sim.kernel.radius, &err);
+    if (st != RY_OK) {
+        rc = fail(&err);
+    } else {
+        size_t count[RY_KIND_COUNT] = {0};
+        for (size_t i = 0; i < sim.ps.n; ++i) count[sim.ps.kind[i]]++;
+        printf("case            %s\n", a.case_path);
+        printf("dimension       %d\n", sim.dim);
+        printf("scheme          %s\n", sim.scheme->name);
+        printf("particles       %zu", sim.ps.n);
+        for (int k = 0; k < RY_KIND_COUNT; ++k)
+            if (count[k]) printf("  %s %zu", ry_kind_name((ry_kind)k), count[k]);
+        printf("\nspacing         %g m\n", sim.dx);
+        printf("kernel          %s, h = %g m (%.3g dx), support radius %g m\n",
+               ry_kernel_name(sim.kernel.type), sim.kernel.h, sim.h_over_dx, sim.kernel.radius);
+        printf("domain          [%g, %g] x [%g, %g]", sim.box.lo[0], sim.box.hi[0], sim.box.lo[1],
+               sim.box.hi[1]);
+        if (sim.dim > 2) printf(" x [%g, %g]", sim.box.lo[2], sim.box.hi[2]);
+        printf("\nmaterials      ");
+        for (int m = 0; m < sim.nmat; ++m)
+            printf(" %s (rho0 %g kg/m^3, nu %g m^2/s)", sim.mat[m].name, sim.mat[m].density,
+                   sim.mat[m].viscosity);
+        double nb = sim.ps.n ? (double)sim.nl.offset[sim.ps.n] / (double)sim.ps.n : 0;
+        printf("\nneighbours      %.1f per particle (mean)\n", nb);
+        double bpp_ps = (double)ry_particles_bytes_per_particle(&sim.ps);
+        double bpp_cl = ry_cells_bytes_per_particle(&sim.cells);
+        double bpp_nl = ry_nlist_bytes_per_particle(&sim.nl);
+        printf("bytes/particle  %.0f (fields %.0f, cell list %.0f, neighbour list %.0f)\n",
+               bpp_ps + bpp_cl + bpp_nl, bpp_ps, bpp_cl, bpp_nl);
+        printf("time            end %g s, output every %g s\n", sim.t_end, sim.output_interval);
+        printf("output          %s\n", sim.out_dir);
+    }
+    ry_sim_free(&sim);
+    ry_case_free(c);
+    free(a.sets);
+    return rc;
+}
+
+static int cmd_list(int schemes) {
+    if (schemes) {
+        const ry_scheme_type *const *s = ry_schemes();
+        for (int i = 0; s[i]; ++i) printf("%-12s %s\n", s[i]->name, s[i]->summary);
+    } else {
+        const ry_probe *const *p = ry_probes();
+        for (int i = 0; p[i]; ++i) printf("%-16s %s\n", p[i]->name, p[i]->summary);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "--version") == 0) {
+        printf("ryushi %s\n", RY_VERSION);
+        return 0;
+    }
+    if (strcmp(cmd, "run") == 0) return cmd_run(argc, argv);
+    if (strcmp(cmd, "info") == 0) return cmd_info(argc, argv);
+    if (strcmp(cmd, "bench") == 0) return ry_cli_bench(argc, argv);
+    if (strcmp(cmd, "plot") == 0) return ry_cli_plot(argc, argv);
+    if (strcmp(cmd, "schemes") == 0) return cmd_list(1);
+    if (strcmp(cmd, "probes") == 0) return cmd_list(0);
+    return bad_usage("unknown command '%s'", cmd);
 }

@@ -1,0 +1,41 @@
+/* ryushi — geometry: bodies of particles on a lattice of spacing dx.
+ *
+ * Lattice points sit at cell centres, lo + (i + 1/2) dx, so that a fluid box and the walls
+ * around it line up: a tank's wall layers lie at lo - (k + 1/2) dx. Every primitive appends
+ * particles of one kind and material with a uniform initial velocity; mass is set later from
+ * the material density (rho0 dx^d). */
+#ifndef RYUSHI_GEOMETRY_H
+#define RYUSHI_GEOMETRY_H
+
+#include "ryushi/case.h"
+#include "ryushi/particles.h"
+#include "ryushi/status.h"
+
+typedef struct ry_body_style {
+    int kind;
+    int material;
+    double velocity[3];
+} ry_body_style;
+
+/* Filled rectangle (2D) or box (3D) [lo, hi]. */
+ry_status ry_fill_box(ry_particles *ps, const double *lo, const double *hi, double dx,
+                      const ry_body_style *st, size_t *added, ry_error *err);
+/* Filled circle (2D) or sphere (3D). */
+ry_status ry_fill_sphere(ry_particles *ps, const double *centre, double radius, double dx,
+                         const ry_body_style *st, size_t *added, ry_error *err);
+/* Filled (3D) cylinder from base centre along an axis (unit vector computed from axis) of a
+ * length, with an outer radius and an inner radius (0 for solid; > 0 gives a tube). */
+ry_status ry_fill_cylinder(ry_particles *ps, const double *base, const double *axis,
+                           double length, double radius, double inner_radius, double dx,
+                           const ry_body_style *st, size_t *added, ry_error *err);
+/* Walls of `layers` particle layers around the box [lo, hi] (the inside stays empty); with
+ * open_top the wall at the top (largest coordinate of the last dimension) is left out. */
+ry_status ry_fill_tank(ry_particles *ps, const double *lo, const double *hi, int layers,
+                       int open_top, double dx, const ry_body_style *st, size_t *added,
+                       ry_error *err);
+
+/* Reads the case's `bodies` sequence and fills them. material_names has nmat entries. */
+ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,
+                                const char *const *material_names, int nmat, ry_error *err);
+
+#endif

@@ -1,0 +1,111 @@
+/* ryushi — the particle set: a structure of arrays in double precision.
+ *
+ * Every per-particle quantity is one contiguous array ("field"). The core fields (position,
+ * velocity, acceleration, density and its rate, pressure, mass, smoothing length, energy and
+ * its rate) come from one table, RY_CORE_FIELDS; schemes register further fields by name
+ * (e.g. a stress tensor) with ry_particles_add_field. Allocation, growth, removal, reordering,
+ * output and checkpoints all walk the same field table, so a new field is handled everywhere
+ * at once. Vector components beyond the dimension are not allocated (z is NULL in 2D).
+ *
+ * Integer data: a stable id (kept through reordering and removal, unique over the run), a kind
+ * (fluid, wall, solid, ...) and a material index. */
+#ifndef RYUSHI_PARTICLES_H
+#define RYUSHI_PARTICLES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ryushi/status.h"
+
+/* X(ID, name, unit, component, flags): component is the vector component (0, 1, 2) or -1 for a
+ * scalar; flags are RY_FIELD_* bits. */
+#define RY_CORE_FIELDS(X)                                                                          \
+    X(RY_F_X, "x", "m", 0, RY_FIELD_STATE)                                                         \
+    X(RY_F_Y, "y", "m", 1, RY_FIELD_STATE)                                                         \
+    X(RY_F_Z, "z", "m", 2, RY_FIELD_STATE)                                                         \
+    X(RY_F_VX, "vx", "m/s", 0, RY_FIELD_STATE)                                                     \
+    X(RY_F_VY, "vy", "m/s", 1, RY_FIELD_STATE)                                                     \
+    X(RY_F_VZ, "vz", "m/s", 2, RY_FIELD_STATE)                                                     \
+    X(RY_F_AX, "ax", "m/s^2", 0, 0)                                                                \
+    X(RY_F_AY, "ay", "m/s^2", 1, 0)                                                                \
+    X(RY_F_AZ, "az", "m/s^2", 2, 0)                                                                \
+    X(RY_F_RHO, "density", "kg/m^3", -1, RY_FIELD_STATE)                                           \
+    X(RY_F_DRHO, "density_rate", "kg/m^3/s", -1, 0)                                                \
+    X(RY_F_P, "pressure", "Pa", -1, RY_FIELD_STATE)                                                \
+    X(RY_F_MASS, "mass", "kg", -1, RY_FIELD_STATE)                                                 \
+    X(RY_F_H, "smoothing_length", "m", -1, RY_FIELD_STATE)                                         \
+    X(RY_F_E, "energy", "J/kg", -1, RY_FIELD_STATE)                                                \
+    X(RY_F_DE, "energy_rate", "W/kg", -1, 0)
+
+enum {
+    RY_FIELD_STATE = 1, /* part of the state: checkpointed (others are recomputed each step) */
+    RY_FIELD_OUTPUT = 2 /* written to VTK output by default */
+};
+
+typedef enum ry_field_id {
+#define RY_FIELD_ENUM_(id, name, unit, comp, flags) id,
+    RY_CORE_FIELDS(RY_FIELD_ENUM_)
+#undef RY_FIELD_ENUM_
+        RY_F_CORE_COUNT
+} ry_field_id;
+
+typedef enum ry_kind {
+    RY_KIND_FLUID = 0,
+    RY_KIND_WALL = 1,  /* fixed or moving boundary (dummy) particle */
+    RY_KIND_SOLID = 2, /* elastic solid */
+    RY_KIND_COUNT
+} ry_kind;
+
+typedef struct ry_field_info {
+    char *name;
+    char *unit;
+    int component; /* 0..2 for vector components, -1 for scalars */
+    int flags;
+} ry_field_info;
+
+typedef struct ry_particles {
+    int dim;
+    size_t n;   /* particles in use */
+    size_t cap; /* allocated */
+    int nfields;
+    int cap_fields;
+    double **f;           /* f[field][particle]; NULL for components >= dim */
+    ry_field_info *info;  /* per field */
+    int64_t *id;          /* stable id */
+    uint8_t *kind;        /* ry_kind */
+    uint8_t *material;    /* index into the simulation's materials */
+    int64_t next_id;      /* id given to the next particle added */
+    void *scratch;        /* reordering buffer */
+    size_t scratch_bytes;
+} ry_particles;
+
+const char *ry_kind_name(ry_kind kind);
+int ry_kind_from_name(const char *name); /* -1 when unknown */
+
+/* Sets up an empty set with the core fields. */
+ry_status ry_particles_init(ry_particles *ps, int dim, ry_error *err);
+void ry_particles_free(ry_particles *ps);
+/* Ensures room for cap particles. */
+ry_status ry_particles_reserve(ry_particles *ps, size_t cap, ry_error *err);
+/* Appends count particles with zeroed fields, new ids, kind fluid and material 0; *first is
+ * the index of the first one. */
+ry_status ry_particles_add(ry_particles *ps, size_t count, size_t *first, ry_error *err);
+/* Removes the particles whose remove[i] is non-zero, keeping the order of the others. */
+void ry_particles_remove(ry_particles *ps, const uint8_t *remove);
+/* Reorders: particle k after the call is particle order[k] before it (order a permutation). */
+ry_status ry_particles_permute(ry_particles *ps, const uint32_t *order, ry_error *err);
+/* Registers a field (or finds an existing one of that name); *id is its index. */
+ry_status ry_particles_add_field(ry_particles *ps, const char *name, const char *unit,
+                                 int component, int flags, int *id, ry_error *err);
+/* Field index by name, -1 when absent. */
+int ry_particles_field(const ry_particles *ps, const char *name);
+/* Bytes per particle held by the set's arrays. */
+size_t ry_particles_bytes_per_particle(const ry_particles *ps);
+/* Coordinates as the neighbour search takes them (x[d] for d < dim, NULL beyond). */
+static inline void ry_particles_coords(const ry_particles *ps, const double *x[3]) {
+    x[0] = ps->f[RY_F_X];
+    x[1] = ps->f[RY_F_Y];
+    x[2] = ps->dim > 2 ? ps->f[RY_F_Z] : 0;
+}
+
+#endif

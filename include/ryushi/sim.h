@@ -1,0 +1,143 @@
+/* ryushi — the simulation: particles, domain, kernel, materials, scheme and time loop.
+ *
+ * Data flows one way: case file -> ry_sim_setup (validated parameters, bodies filled with
+ * particles) -> ry_sim_run [neighbour search -> scheme step -> measurements -> output]. A
+ * scheme (WCSPH, IISPH, MPS, solid SPH) is a small table of functions registered by name in
+ * src/core/schemes.c and chosen by the case's `scheme.name`. */
+#ifndef RYUSHI_SIM_H
+#define RYUSHI_SIM_H
+
+#include <signal.h>
+#include <stdio.h>
+
+#include "ryushi/case.h"
+#include "ryushi/kernel.h"
+#include "ryushi/neighbor.h"
+#include "ryushi/particles.h"
+#include "ryushi/status.h"
+
+typedef struct ry_sim ry_sim;
+
+typedef struct ry_material {
+    char *name;
+    double density;   /* reference density rho0 [kg/m^3] */
+    double viscosity; /* kinematic viscosity nu [m^2/s] */
+} ry_material;
+
+/* A scheme: how particles advance in time. */
+typedef struct ry_scheme_type {
+    const char *name;
+    const char *summary;
+    /* Reads the scheme's keys from the case (section "scheme"), registers its particle fields
+     * and prepares its state. */
+    ry_status (*init)(ry_sim *sim, ry_case *c, void **state, ry_error *err);
+    /* Largest stable time step for the current state. */
+    ry_status (*stable_dt)(ry_sim *sim, void *state, double *dt, ry_error *err);
+    /* Advances the state by dt (sim->t is advanced by the caller). */
+    ry_status (*step)(ry_sim *sim, void *state, double dt, ry_error *err);
+    void (*free)(void *state);
+} ry_scheme_type;
+
+/* The registered schemes, NULL-terminated. */
+const ry_scheme_type *const *ry_schemes(void);
+const ry_scheme_type *ry_scheme_find(const char *name);
+
+/* A measured quantity written as a column of series.csv. */
+typedef struct ry_probe {
+    const char *name;
+    const char *summary;
+    ry_status (*eval)(const ry_sim *sim, double *value, ry_error *err);
+} ry_probe;
+const ry_probe *const *ry_probes(void);
+
+struct ry_sim {
+    int dim;
+    ry_particles ps;
+    ry_box box;          /* domain: neighbour search, and particles leaving it */
+    double dx;           /* initial particle spacing [m] */
+    double h_over_dx;    /* smoothing length / spacing */
+    ry_kernel kernel;    /* at h = h_over_dx * dx */
+    double gravity[3];   /* [m/s^2] */
+    int nmat;
+    ry_material *mat;
+
+    /* time */
+    double t, t_end, dt;
+    double cfl;          /* Courant number for the scheme's time-step limits */
+    double dt_max;       /* upper bound on dt (0: none) */
+    long step, max_steps;
+
+    /* neighbour search */
+    ry_cell_list cells;
+    ry_nlist nl;
+    double nl_radius;
+    int reorder_every;   /* reorder particles along cells every so many searches (0: never) */
+    long searches;
+
+    /* scheme */
+    const ry_scheme_type *scheme;
+    void *scheme_state;
+
+    /* measurements */
+    int nprobes;
+    const ry_probe **probes;
+
+    /* output */
+    char *out_dir;
+    char *case_name;     /* base name of the case file, without extension */
+    double output_interval;
+    int write_vtk;
+    int output_index;
+    double next_output;
+    void *writer;        /* output state (pvd entries, series buffer) */
+};
+
+/* Builds the simulation from a case; checks every key (unknown keys are errors). out_dir may
+ * be NULL to take the case's output.folder. */
+ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *err);
+void ry_sim_free(ry_sim *sim);
+
+/* Rebuilds the neighbour list for a support radius (reordering the particles along cells
+ * every reorder_every calls). Schemes call this at the start of a step. */
+ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err);
+
+/* Progress reports and the stop flag for ry_sim_run. */
+typedef struct ry_run_hooks {
+    void (*progress)(void *ctx, const ry_sim *sim, double particle_steps_per_s, double eta_s);
+    void *ctx;
+    double progress_interval_s;      /* wall seconds between progress calls */
+    volatile sig_atomic_t *stop;     /* set (by a signal handler) to end the run cleanly */
+} ry_run_hooks;
+
+/* Summary of a run. */
+typedef struct ry_run_stats {
+    long steps;
+    size_t particles;
+    double wall_s;
+    double particle_steps_per_s;
+    int outputs;
+} ry_run_stats;
+
+/* Runs to t_end (or max_steps), writing output at the output interval and at the end. On
+ * instability the last good state is kept on disk and RY_ERR_UNSTABLE returned with a
+ * diagnosis; on a stop request the current state is written and RY_ERR_INTERRUPTED returned. */
+ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err);
+
+/* Creates the output folder, writes the resolved case into it (case_resolved.yaml) and
+ * starts series.csv. Call before ry_sim_run. */
+ry_status ry_sim_open_output(ry_sim *sim, ry_case *c, ry_error *err);
+
+/* Writes the current state (VTK file, .pvd entry, series.csv row). */
+ry_status ry_sim_write_output(ry_sim *sim, ry_error *err);
+
+/* Checks every particle for non-finite or runaway values and the domain; RY_ERR_UNSTABLE with
+ * the first bad particles named. */
+ry_status ry_sim_check(const ry_sim *sim, ry_error *err);
+
+/* Counts fluid particles outside the domain box, and total mass of a kind. */
+size_t ry_sim_count_outside(const ry_sim *sim);
+
+/* Monotonic wall clock in seconds. */
+double ry_wall_time(void);
+
+#endif

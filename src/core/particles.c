@@ -1,0 +1,206 @@
+/* The particle set: structure of arrays over a field table (see include/ryushi/particles.h). */
+#include "ryushi/particles.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const kind_names[RY_KIND_COUNT] = {"fluid", "wall", "solid"};
+
+const char *ry_kind_name(ry_kind kind) {
+    return (unsigned)kind < RY_KIND_COUNT ? kind_names[kind] : "unknown";
+}
+
+int ry_kind_from_name(const char *name) {
+    for (int k = 0; k < RY_KIND_COUNT; ++k)
+        if (strcmp(name, kind_names[k]) == 0) return k;
+    return -1;
+}
+
+static char *dup_str(const char *s) {
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+static int field_allocated(const ry_particles *ps, int comp) { return comp < ps->dim; }
+
+static ry_status grow_fields(ry_particles *ps, ry_error *err) {
+    if (ps->nfields < ps->cap_fields) return RY_OK;
+    int cap = ps->cap_fields ? 2 * ps->cap_fields : 32;
+    double **f = realloc(ps->f, (size_t)cap * sizeof *f);
+    if (!f) return ry_error_set(err, RY_ERR_NOMEM, "out of memory (particle field table)");
+    ps->f = f;
+    ry_field_info *info = realloc(ps->info, (size_t)cap * sizeof *info);
+    if (!info) return ry_error_set(err, RY_ERR_NOMEM, "out of memory (particle field table)");
+    ps->info = info;
+    ps->cap_fields = cap;
+    return RY_OK;
+}
+
+ry_status ry_particles_add_field(ry_particles *ps, const char *name, const char *unit,
+                                 int component, int flags, int *id, ry_error *err) {
+    int existing = ry_particles_field(ps, name);
+    if (existing >= 0) {
+        if (id) *id = existing;
+        return RY_OK;
+    }
+    RY_CHECK(err, component >= -1 && component <= 2, RY_ERR_INTERNAL,
+             "field '%s': bad component %d", name, component);
+    RY_TRY(grow_fields(ps, err));
+    int k = ps->nfields;
+    ry_field_info *fi = &ps->info[k];
+    fi->name = dup_str(name);
+    fi->unit = dup_str(unit);
+    fi->component = component;
+    fi->flags = flags;
+    ps->f[k] = NULL;
+    if (!fi->name || !fi->unit) {
+        free(fi->name);
+        free(fi->unit);
+        return ry_error_set(err, RY_ERR_NOMEM, "out of memory (field '%s')", name);
+    }
+    if (field_allocated(ps, component) && ps->cap) {
+        ps->f[k] = calloc(ps->cap, sizeof(double));
+        if (!ps->f[k]) {
+            free(fi->name);
+            free(fi->unit);
+            return ry_error_set(err, RY_ERR_NOMEM, "out of memory (field '%s')", name);
+        }
+    }
+    ps->nfields++;
+    if (id) *id = k;
+    return RY_OK;
+}
+
+int ry_particles_field(const ry_particles *ps, const char *name) {
+    for (int k = 0; k < ps->nfields; ++k)
+        if (strcmp(ps->info[k].name, name) == 0) return k;
+    return -1;
+}
+
+ry_status ry_particles_init(ry_particles *ps, int dim, ry_error *err) {
+    memset(ps, 0, sizeof *ps);
+    RY_CHECK(err, dim >= 1 && dim <= 3, RY_ERR_INPUT, "dimension must be 1, 2 or 3, not %d", dim);
+    ps->dim = dim;
+    ry_status st = RY_OK;
+#define RY_FIELD_ADD_(fid, name, unit, comp, flags)                                                \
+    if (st == RY_OK) st = ry_particles_add_field(ps, name, unit, comp, flags, NULL, err);
+    RY_CORE_FIELDS(RY_FIELD_ADD_)
+#undef RY_FIELD_ADD_
+    if (st != RY_OK) ry_particles_free(ps);
+    return st;
+}
+
+void ry_particles_free(ry_particles *ps) {
+    for (int k = 0; k < ps->nfields; ++k) {
+        free(ps->f[k]);
+        free(ps->info[k].name);
+        free(ps->info[k].unit);
+    }
+    free(ps->f);
+    free(ps->info);
+    free(ps->id);
+    free(ps->kind);
+    free(ps->material);
+    free(ps->scratch);
+    memset(ps, 0, sizeof *ps);
+}
+
+static ry_status realloc_array(void **p, size_t count, size_t size, ry_error *err) {
+    void *q = realloc(*p, count * size);
+    if (!q && count) return ry_error_set(err, RY_ERR_NOMEM, "out of memory (%zu particles)", count);
+    *p = q;
+    return RY_OK;
+}
+
+ry_status ry_particles_reserve(ry_particles *ps, size_t cap, ry_error *err) {
+    if (cap <= ps->cap) return RY_OK;
+    for (int k = 0; k < ps->nfields; ++k) {
+        if (!field_allocated(ps, ps->info[k].component)) continue;
+        RY_TRY(realloc_array((void **)&ps->f[k], cap, sizeof(double), err));
+        memset(ps->f[k] + ps->cap, 0, (cap - ps->cap) * sizeof(double));
+    }
+    RY_TRY(realloc_array((void **)&ps->id, cap, sizeof *ps->id, err));
+    RY_TRY(realloc_array((void **)&ps->kind, cap, sizeof *ps->kind, err));
+    RY_TRY(realloc_array((void **)&ps->material, cap, sizeof *ps->material, err));
+    ps->cap = cap;
+    return RY_OK;
+}
+
+ry_status ry_particles_add(ry_particles *ps, size_t count, size_t *first, ry_error *err) {
+    size_t need = ps->n + count;
+    if (need > UINT32_MAX)
+        return ry_error_set(err, RY_ERR_RANGE, "too many particles (%zu) for one process", need);
+    if (need > ps->cap) {
+        size_t cap = ps->cap ? ps->cap : 1024;
+        while (cap < need) cap += cap / 2;
+        RY_TRY(ry_particles_reserve(ps, cap, err));
+    }
+    size_t i0 = ps->n;
+    for (int k = 0; k < ps->nfields; ++k)
+        if (ps->f[k]) memset(ps->f[k] + i0, 0, count * sizeof(double));
+    for (size_t i = i0; i < need; ++i) {
+        ps->id[i] = ps->next_id++;
+        ps->kind[i] = RY_KIND_FLUID;
+        ps->material[i] = 0;
+    }
+    ps->n = need;
+    if (first) *first = i0;
+    return RY_OK;
+}
+
+void ry_particles_remove(ry_particles *ps, const uint8_t *remove) {
+    size_t w = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (remove[i]) continue;
+        if (w != i) {
+            for (int k = 0; k < ps->nfields; ++k)
+                if (ps->f[k]) ps->f[k][w] = ps->f[k][i];
+            ps->id[w] = ps->id[i];
+            ps->kind[w] = ps->kind[i];
+            ps->material[w] = ps->material[i];
+        }
+        ++w;
+    }
+    ps->n = w;
+}
+
+ry_status ry_particles_permute(ry_particles *ps, const uint32_t *order, ry_error *err) {
+    /* The scratch buffer is swapped with field arrays, so it must hold a full capacity. */
+    size_t need = ps->cap * sizeof(double);
+    if (ps->scratch_bytes < need) {
+        void *s = realloc(ps->scratch, need);
+        if (!s && need) return ry_error_set(err, RY_ERR_NOMEM, "out of memory (reordering)");
+        ps->scratch = s;
+        ps->scratch_bytes = need;
+    }
+    size_t n = ps->n;
+    double *tmp = ps->scratch;
+    for (int k = 0; k < ps->nfields; ++k) {
+        double *a = ps->f[k];
+        if (!a) continue;
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; ++i) tmp[i] = a[order[i]];
+        ps->f[k] = tmp;
+        tmp = a;
+    }
+    /* The last buffer swapped out becomes the new scratch. */
+    ps->scratch = tmp;
+    int64_t *ti = (int64_t *)tmp;
+    for (size_t i = 0; i < n; ++i) ti[i] = ps->id[order[i]];
+    memcpy(ps->id, ti, n * sizeof *ti);
+    uint8_t *tb = (uint8_t *)tmp;
+    for (size_t i = 0; i < n; ++i) tb[i] = ps->kind[order[i]];
+    memcpy(ps->kind, tb, n);
+    for (size_t i = 0; i < n; ++i) tb[i] = ps->material[order[i]];
+    memcpy(ps->material, tb, n);
+    return RY_OK;
+}
+
+size_t ry_particles_bytes_per_particle(const ry_particles *ps) {
+    size_t b = sizeof *ps->id + sizeof *ps->kind + sizeof *ps->material;
+    for (int k = 0; k < ps->nfields; ++k)
+        if (field_allocated(ps, ps->info[k].component)) b += sizeof(double);
+    return b;
+}

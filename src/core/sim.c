@@ -1,0 +1,300 @@
+/* Simulation set-up from a case file, neighbour updates and checks. */
+#define _POSIX_C_SOURCE 200809L
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/writer.h"
+#include "ryushi/geometry.h"
+#include "ryushi/sim.h"
+
+double ry_wall_time(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static char *dup_str(const char *s) {
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+static ry_status read_materials(ry_sim *sim, ry_case *c, ry_error *err) {
+    size_t n;
+    char k[96], where[256];
+    RY_TRY(ry_case_count(c, "materials", &n, err));
+    RY_CHECK(err, n > 0, RY_ERR_INPUT, "%s: key 'materials': at least one material is required",
+             ry_case_name(c));
+    RY_CHECK(err, n <= 255, RY_ERR_INPUT, "%s: key 'materials': at most 255 materials",
+             ry_case_name(c));
+    sim->mat = calloc(n, sizeof *sim->mat);
+    RY_CHECK(err, sim->mat != NULL, RY_ERR_NOMEM, "out of memory");
+    sim->nmat = (int)n;
+    double zero = 0;
+    for (size_t i = 0; i < n; ++i) {
+        ry_material *m = &sim->mat[i];
+        const char *name;
+        snprintf(k, sizeof k, "materials[%zu].name", i);
+        RY_TRY(ry_case_string(c, k, NULL, &name, err));
+        for (size_t j = 0; j < i; ++j)
+            RY_CHECK(err, strcmp(sim->mat[j].name, name) != 0, RY_ERR_INPUT,
+                     "%s: key '%s': material '%s' is defined twice",
+                     ry_case_where(c, k, where, sizeof where), k, name);
+        RY_CHECK(err, name[0] != '\0', RY_ERR_INPUT, "%s: key '%s': empty material name",
+                 ry_case_where(c, k, where, sizeof where), k);
+        m->name = dup_str(name);
+        RY_CHECK(err, m->name != NULL, RY_ERR_NOMEM, "out of memory");
+        snprintf(k, sizeof k, "materials[%zu].density", i);
+        RY_TRY(ry_case_positive(c, k, NULL, &m->density, err));
+        snprintf(k, sizeof k, "materials[%zu].viscosity", i);
+        RY_TRY(ry_case_double(c, k, &zero, 0.0, INFINITY, &m->viscosity, err));
+    }
+    return RY_OK;
+}
+
+static const char *const kernel_names[] = {"cubic",       "quintic", "wendland_c2",
+                                           "wendland_c4", "lucy",    "gaussian", NULL};
+
+static ry_status read_domain(ry_sim *sim, ry_case *c, ry_error *err) {
+    ry_box *b = &sim->box;
+    memset(b, 0, sizeof *b);
+    b->dim = sim->dim;
+    const ry_particles *ps = &sim->ps;
+    double lo[3] = {0}, hi[3] = {0};
+    for (int d = 0; d < sim->dim; ++d) {
+        lo[d] = INFINITY;
+        hi[d] = -INFINITY;
+        for (size_t i = 0; i < ps->n; ++i) {
+            lo[d] = fmin(lo[d], ps->f[RY_F_X + d][i]);
+            hi[d] = fmax(hi[d], ps->f[RY_F_X + d][i]);
+        }
+    }
+    /* Default: the particles' bounding box, widened by a quarter of its size on every side
+     * (and by at least a few spacings). */
+    double dlo[3], dhi[3];
+    for (int d = 0; d < sim->dim; ++d) {
+        double w = fmax(0.25 * (hi[d] - lo[d]), 4 * sim->dx);
+        dlo[d] = lo[d] - w;
+        dhi[d] = hi[d] + w;
+    }
+    RY_TRY(ry_case_vector(c, "domain.lo", dlo, sim->dim, b->lo, err));
+    RY_TRY(ry_case_vector(c, "domain.hi", dhi, sim->dim, b->hi, err));
+    static const char *const pk[3] = {"domain.periodic_x", "domain.periodic_y",
+                                      "domain.periodic_z"};
+    int no = 0;
+    char where[256];
+    for (int d = 0; d < sim->dim; ++d) {
+        RY_CHECK(err, b->hi[d] > b->lo[d], RY_ERR_INPUT,
+                 "%s: key 'domain.hi': must exceed domain.lo in every direction",
+                 ry_case_where(c, "domain.hi", where, sizeof where));
+        RY_TRY(ry_case_bool(c, pk[d], &no, &b->periodic[d], err));
+        if (b->periodic[d])
+            RY_CHECK(err, b->hi[d] - b->lo[d] >= 2 * sim->kernel.radius, RY_ERR_INPUT,
+                     "%s: key '%s': periodic length must be at least two support radii",
+                     ry_case_where(c, pk[d], where, sizeof where), pk[d]);
+    }
+    for (size_t i = 0; i < ps->n; ++i)
+        for (int d = 0; d < sim->dim; ++d) {
+            double x = ps->f[RY_F_X + d][i];
+            RY_CHECK(err, x >= b->lo[d] && x < b->hi[d], RY_ERR_INPUT,
+                     "%s: key 'domain': particle %lld of body at (%g, %g%s) lies outside the "
+                     "domain",
+                     ry_case_where(c, "domain", where, sizeof where), (long long)ps->id[i],
+                     ps->f[RY_F_X][i], ps->f[RY_F_Y][i], sim->dim > 2 ? ", ..." : "");
+        }
+    return RY_OK;
+}
+
+static ry_status read_probes(ry_sim *sim, ry_case *c, ry_error *err) {
+    size_t n;
+    char k[64];
+    RY_TRY(ry_case_count(c, "measure", &n, err));
+    const ry_probe *const *all = ry_probes();
+    int count = 0;
+    while (all[count]) ++count;
+    const char **names = calloc((size_t)count + 1, sizeof *names);
+    sim->probes = calloc(n + 1, sizeof *sim->probes);
+    if (!names || !sim->probes) {
+        free(names);
+        return ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    }
+    for (int i = 0; i < count; ++i) names[i] = all[i]->name;
+    ry_status st = RY_OK;
+    for (size_t i = 0; i < n && st == RY_OK; ++i) {
+        int which;
+        snprintf(k, sizeof k, "measure[%zu]", i);
+        st = ry_case_choice(c, k, NULL, names, &which, err);
+        if (st == RY_OK) sim->probes[sim->nprobes++] = all[which];
+    }
+    free(names);
+    return st;
+}
+
+static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {
+    const ry_scheme_type *const *all = ry_schemes();
+    int count = 0;
+    while (all[count]) ++count;
+    const char **names = calloc((size_t)count + 1, sizeof *names);
+    RY_CHECK(err, names != NULL, RY_ERR_NOMEM, "out of memory");
+    for (int i = 0; i < count; ++i) names[i] = all[i]->name;
+    int which;
+    ry_status st = ry_case_choice(c, "scheme.name", NULL, names, &which, err);
+    free(names);
+    RY_TRY(st);
+    sim->scheme = all[which];
+    return sim->scheme->init(sim, c, &sim->scheme_state, err);
+}
+
+static const char *base_name(const char *path, char *buf, size_t size) {
+    const char *s = strrchr(path, '/');
+    s = s ? s + 1 : path;
+    snprintf(buf, size, "%s", s);
+    char *dot = strrchr(buf, '.');
+    if (dot && dot != buf) *dot = '\0';
+    return buf;
+}
+
+ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *err) {
+    memset(sim, 0, sizeof *sim);
+    long dim;
+    RY_TRY(ry_case_int(c, "dimension", NULL, 2, 3, &dim, err));
+    sim->dim = (int)dim;
+    RY_TRY(ry_particles_init(&sim->ps, sim->dim, err));
+    RY_TRY(ry_case_positive(c, "spacing", NULL, &sim->dx, err));
+
+    int kt;
+    double hdx = 1.3;
+    RY_TRY(ry_case_choice(c, "kernel.type", "wendland_c2", kernel_names, &kt, err));
+    RY_TRY(ry_case_double(c, "kernel.h_over_dx", &hdx, 0.5, 4.0, &sim->h_over_dx, err));
+    RY_TRY(ry_kernel_init(&sim->kernel, (ry_kernel_type)kt, sim->dim, sim->h_over_dx * sim->dx,
+                          err));
+
+    double zero[3] = {0, 0, 0};
+    RY_TRY(ry_case_vector(c, "gravity", zero, sim->dim, sim->gravity, err));
+    RY_TRY(read_materials(sim, c, err));
+
+    const char **mnames = calloc((size_t)sim->nmat + 1, sizeof *mnames);
+    RY_CHECK(err, mnames != NULL, RY_ERR_NOMEM, "out of memory");
+    for (int i = 0; i < sim->nmat; ++i) mnames[i] = sim->mat[i].name;
+    ry_status st = ry_geometry_from_case(&sim->ps, c, sim->dx, mnames, sim->nmat, err);
+    free(mnames);
+    RY_TRY(st);
+
+    /* Mass from the material density on the lattice; density at rest; smoothing length. */
+    double vol = pow(sim->dx, sim->dim);
+    for (size_t i = 0; i < sim->ps.n; ++i) {
+        const ry_material *m = &sim->mat[sim->ps.material[i]];
+        sim->ps.f[RY_F_MASS][i] = m->density * vol;
+        sim->ps.f[RY_F_RHO][i] = m->density;
+        sim->ps.f[RY_F_H][i] = sim->kernel.h;
+    }
+    RY_TRY(read_domain(sim, c, err));
+
+    double one = 1.0, cfl = 0.25, dtmax = 0.0;
+    long maxsteps = 1000000000L, reorder = 20;
+    RY_TRY(ry_case_positive(c, "time.end", NULL, &sim->t_end, err));
+    double oi = sim->t_end / 50;
+    RY_TRY(ry_case_positive(c, "time.output_interval", &oi, &sim->output_interval, err));
+    RY_TRY(ry_case_double(c, "time.cfl", &cfl, 1e-3, one, &sim->cfl, err));
+    RY_TRY(ry_case_double(c, "time.dt_max", &dtmax, 0.0, INFINITY, &sim->dt_max, err));
+    RY_TRY(ry_case_int(c, "time.max_steps", &maxsteps, 1, 1000000000000L, &sim->max_steps, err));
+    RY_TRY(ry_case_int(c, "neighbors.reorder_every", &reorder, 0, 1000000, &reorder, err));
+    sim->reorder_every = (int)reorder;
+
+    char nb[256], def_out[300];
+    base_name(ry_case_name(c), nb, sizeof nb);
+    sim->case_name = dup_str(nb);
+    snprintf(def_out, sizeof def_out, "out/%s", nb);
+    const char *folder;
+    int yes = 1;
+    RY_TRY(ry_case_string(c, "output.folder", def_out, &folder, err));
+    RY_TRY(ry_case_bool(c, "output.vtk", &yes, &sim->write_vtk, err));
+    sim->out_dir = dup_str(out_dir ? out_dir : folder);
+    RY_CHECK(err, sim->out_dir && sim->case_name, RY_ERR_NOMEM, "out of memory");
+
+    RY_TRY(read_probes(sim, c, err));
+    RY_TRY(read_scheme(sim, c, err));
+    ry_case_touch(c, "description");
+    RY_TRY(ry_case_check_unused(c, err));
+    return RY_OK;
+}
+
+void ry_sim_free(ry_sim *sim) {
+    if (sim->scheme && sim->scheme->free) sim->scheme->free(sim->scheme_state);
+    ry_writer_free(sim);
+    ry_particles_free(&sim->ps);
+    ry_cells_free(&sim->cells);
+    ry_nlist_free(&sim->nl);
+    for (int i = 0; i < sim->nmat; ++i) free(sim->mat[i].name);
+    free(sim->mat);
+    free(sim->probes);
+    free(sim->out_dir);
+    free(sim->case_name);
+    memset(sim, 0, sizeof *sim);
+}
+
+ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
+    const double *x[3];
+    ry_particles_coords(&sim->ps, x);
+    RY_TRY(ry_cells_build(&sim->cells, &sim->box, radius, sim->ps.n, x, err));
+    if (sim->reorder_every > 0 && sim->searches % sim->reorder_every == 0) {
+        RY_TRY(ry_particles_permute(&sim->ps, sim->cells.order, err));
+        ry_particles_coords(&sim->ps, x);
+        RY_TRY(ry_cells_build(&sim->cells, &sim->box, radius, sim->ps.n, x, err));
+    }
+    sim->searches++;
+    sim->nl_radius = radius;
+    return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, radius, sim->ps.n, x, err);
+}
+
+size_t ry_sim_count_outside(const ry_sim *sim) {
+    size_t count = 0;
+    const ry_particles *ps = &sim->ps;
+    for (size_t i = 0; i < ps->n; ++i)
+        for (int d = 0; d < sim->dim; ++d) {
+            double x = ps->f[RY_F_X + d][i];
+            if (!(x >= sim->box.lo[d] && x < sim->box.hi[d])) {
+                ++count;
+                break;
+            }
+        }
+    return count;
+}
+
+ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    size_t bad = 0, first = 0;
+    const char *what = NULL;
+    for (size_t i = 0; i < ps->n; ++i) {
+        const char *w = NULL;
+        for (int d = 0; d < sim->dim && !w; ++d) {
+            if (!isfinite(ps->f[RY_F_X + d][i])) w = "position is not finite";
+            else if (!isfinite(ps->f[RY_F_VX + d][i])) w = "velocity is not finite";
+        }
+        if (!w && !isfinite(ps->f[RY_F_P][i])) w = "pressure is not finite";
+        if (!w && !(ps->f[RY_F_RHO][i] > 0 && isfinite(ps->f[RY_F_RHO][i])))
+            w = "density is not positive and finite";
+        if (w) {
+            if (!bad) {
+                first = i;
+                what = w;
+            }
+            ++bad;
+        }
+    }
+    if (bad) {
+        return ry_error_set(err, RY_ERR_UNSTABLE,
+                            "unstable at step %ld, t = %.6g s: %zu particle(s) bad; first: "
+                            "particle id %lld (%s) at (%g, %g, %g): %s",
+                            sim->step, sim->t, bad, (long long)ps->id[first],
+                            ry_kind_name((ry_kind)ps->kind[first]), ps->f[RY_F_X][first],
+                            ps->f[RY_F_Y][first], sim->dim > 2 ? ps->f[RY_F_Z][first] : 0.0,
+                            what);
+    }
+    return RY_OK;
+}

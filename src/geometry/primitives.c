@@ -1,0 +1,163 @@
+/* Lattice filling of geometric primitives (see include/ryushi/geometry.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ryushi/geometry.h"
+
+/* Number of lattice points lo + (i + 1/2) dx inside [a, b] (with a tolerance of 1e-9 spacings,
+ * so that a box exactly n spacings wide gets n points). */
+static long lattice_count(double a, double b, double dx) {
+    long n = (long)floor((b - a) / dx + 1e-9);
+    return n < 0 ? 0 : n;
+}
+
+typedef int (*inside_fn)(const double *p, const void *ctx);
+
+/* Appends the lattice points of [lo, lo + n dx] for which inside() holds. */
+static ry_status fill_lattice(ry_particles *ps, const double *lo, const long *n, double dx,
+                              inside_fn inside, const void *ctx, const ry_body_style *st,
+                              size_t *added, ry_error *err) {
+    int dim = ps->dim;
+    long nz = dim > 2 ? n[2] : 1;
+    size_t total = (size_t)n[0] * (size_t)n[1] * (size_t)nz;
+    size_t count = 0;
+    RY_CHECK(err, total < (size_t)UINT32_MAX, RY_ERR_RANGE,
+             "body would hold %zu lattice points: spacing too small for its size", total);
+    RY_TRY(ry_particles_reserve(ps, ps->n + total, err));
+    for (long k = 0; k < nz; ++k)
+        for (long j = 0; j < n[1]; ++j)
+            for (long i = 0; i < n[0]; ++i) {
+                double p[3] = {lo[0] + (i + 0.5) * dx, lo[1] + (j + 0.5) * dx,
+                               dim > 2 ? lo[2] + (k + 0.5) * dx : 0.0};
+                if (inside && !inside(p, ctx)) continue;
+                size_t q;
+                RY_TRY(ry_particles_add(ps, 1, &q, err));
+                for (int d = 0; d < dim; ++d) {
+                    ps->f[RY_F_X + d][q] = p[d];
+                    ps->f[RY_F_VX + d][q] = st->velocity[d];
+                }
+                ps->kind[q] = (uint8_t)st->kind;
+                ps->material[q] = (uint8_t)st->material;
+                ++count;
+            }
+    if (added) *added = count;
+    return RY_OK;
+}
+
+ry_status ry_fill_box(ry_particles *ps, const double *lo, const double *hi, double dx,
+                      const ry_body_style *st, size_t *added, ry_error *err) {
+    long n[3] = {1, 1, 1};
+    for (int d = 0; d < ps->dim; ++d) {
+        RY_CHECK(err, hi[d] > lo[d], RY_ERR_INPUT, "box: hi must exceed lo in every direction");
+        n[d] = lattice_count(lo[d], hi[d], dx);
+    }
+    return fill_lattice(ps, lo, n, dx, NULL, NULL, st, added, err);
+}
+
+typedef struct sphere_ctx {
+    int dim;
+    double c[3], r2;
+} sphere_ctx;
+
+static int inside_sphere(const double *p, const void *ctx) {
+    const sphere_ctx *s = ctx;
+    double r2 = 0;
+    for (int d = 0; d < s->dim; ++d) r2 += (p[d] - s->c[d]) * (p[d] - s->c[d]);
+    return r2 <= s->r2;
+}
+
+ry_status ry_fill_sphere(ry_particles *ps, const double *centre, double radius, double dx,
+                         const ry_body_style *st, size_t *added, ry_error *err) {
+    RY_CHECK(err, radius > 0, RY_ERR_INPUT, "sphere: radius must be > 0");
+    sphere_ctx s = {.dim = ps->dim, .r2 = radius * radius};
+    double lo[3] = {0, 0, 0};
+    long n[3] = {1, 1, 1};
+    /* A lattice centred on the sphere's centre (points symmetric about it). */
+    long m = (long)ceil(radius / dx) + 1;
+    for (int d = 0; d < ps->dim; ++d) {
+        s.c[d] = centre[d];
+        lo[d] = centre[d] - m * dx;
+        n[d] = 2 * m;
+    }
+    return fill_lattice(ps, lo, n, dx, inside_sphere, &s, st, added, err);
+}
+
+typedef struct cyl_ctx {
+    double base[3], axis[3], length, r2, ri2;
+} cyl_ctx;
+
+static int inside_cylinder(const double *p, const void *ctx) {
+    const cyl_ctx *c = ctx;
+    double v[3] = {p[0] - c->base[0], p[1] - c->base[1], p[2] - c->base[2]};
+    double s = v[0] * c->axis[0] + v[1] * c->axis[1] + v[2] * c->axis[2];
+    if (s < 0 || s > c->length) return 0;
+    double r2 = 0;
+    for (int d = 0; d < 3; ++d) {
+        double w = v[d] - s * c->axis[d];
+        r2 += w * w;
+    }
+    return r2 <= c->r2 && r2 >= c->ri2;
+}
+
+ry_status ry_fill_cylinder(ry_particles *ps, const double *base, const double *axis,
+                           double length, double radius, double inner_radius, double dx,
+                           const ry_body_style *st, size_t *added, ry_error *err) {
+    RY_CHECK(err, ps->dim == 3, RY_ERR_INPUT, "cylinder: only in 3D (use a box in 2D)");
+    RY_CHECK(err, radius > 0 && length > 0, RY_ERR_INPUT,
+             "cylinder: radius and length must be > 0");
+    RY_CHECK(err, inner_radius >= 0 && inner_radius < radius, RY_ERR_INPUT,
+             "cylinder: inner_radius must be in [0, radius)");
+    double a = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    RY_CHECK(err, a > 0 && isfinite(a), RY_ERR_INPUT, "cylinder: axis must be non-zero");
+    cyl_ctx c = {.length = length, .r2 = radius * radius, .ri2 = inner_radius * inner_radius};
+    double lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+        c.base[d] = base[d];
+        c.axis[d] = axis[d] / a;
+        double e0 = base[d], e1 = base[d] + length * c.axis[d];
+        lo[d] = fmin(e0, e1) - radius;
+        hi[d] = fmax(e0, e1) + radius;
+    }
+    long n[3];
+    for (int d = 0; d < 3; ++d) n[d] = (long)ceil((hi[d] - lo[d]) / dx);
+    return fill_lattice(ps, lo, n, dx, inside_cylinder, &c, st, added, err);
+}
+
+typedef struct tank_ctx {
+    int dim, open_top;
+    double lo[3], hi[3];
+} tank_ctx;
+
+static int inside_tank_wall(const double *p, const void *ctx) {
+    const tank_ctx *t = ctx;
+    int inside = 1;
+    for (int d = 0; d < t->dim; ++d)
+        if (p[d] < t->lo[d] || p[d] > t->hi[d]) inside = 0;
+    if (inside) return 0; /* the cavity itself */
+    if (t->open_top && p[t->dim - 1] > t->lo[t->dim - 1]) {
+        /* Above the floor: keep only points beside the cavity (side walls), not above it. */
+        for (int d = 0; d < t->dim - 1; ++d)
+            if (p[d] < t->lo[d] || p[d] > t->hi[d]) return 1;
+        return 0;
+    }
+    return 1;
+}
+
+ry_status ry_fill_tank(ry_particles *ps, const double *lo, const double *hi, int layers,
+                       int open_top, double dx, const ry_body_style *st, size_t *added,
+                       ry_error *err) {
+    RY_CHECK(err, layers >= 1, RY_ERR_INPUT, "tank: layers must be >= 1");
+    tank_ctx t = {.dim = ps->dim, .open_top = open_top};
+    double olo[3] = {0, 0, 0};
+    long n[3] = {1, 1, 1};
+    for (int d = 0; d < ps->dim; ++d) {
+        RY_CHECK(err, hi[d] > lo[d], RY_ERR_INPUT, "tank: hi must exceed lo in every direction");
+        long m = lattice_count(lo[d], hi[d], dx);
+        t.lo[d] = lo[d];
+        t.hi[d] = lo[d] + m * dx;
+        olo[d] = lo[d] - layers * dx;
+        n[d] = m + 2 * layers;
+    }
+    return fill_lattice(ps, olo, n, dx, inside_tank_wall, &t, st, added, err);
+}

@@ -1,0 +1,108 @@
+/* Measured quantities: the columns of series.csv. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "ryushi/sim.h"
+
+static ry_status probe_mass(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    const ry_particles *ps = &sim->ps;
+    double m = 0;
+    for (size_t i = 0; i < ps->n; ++i)
+        if (ps->kind[i] == RY_KIND_FLUID) m += ps->f[RY_F_MASS][i];
+    *v = m;
+    return RY_OK;
+}
+
+static ry_status probe_kinetic(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    const ry_particles *ps = &sim->ps;
+    double e = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double u2 = 0;
+        for (int d = 0; d < sim->dim; ++d) u2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        e += 0.5 * ps->f[RY_F_MASS][i] * u2;
+    }
+    *v = e;
+    return RY_OK;
+}
+
+static ry_status probe_max_speed(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    const ry_particles *ps = &sim->ps;
+    double m = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double u2 = 0;
+        for (int d = 0; d < sim->dim; ++d) u2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        m = fmax(m, u2);
+    }
+    *v = sqrt(m);
+    return RY_OK;
+}
+
+static ry_status probe_outside(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = (double)ry_sim_count_outside(sim);
+    return RY_OK;
+}
+
+/* Surge front: the leading edge (largest x) of the fluid body on the floor. Fluid particles
+ * within 3 spacings of the lowest fluid particle are binned along x in bins one spacing wide;
+ * starting from the leftmost occupied bin, the body continues while gaps are at most one empty
+ * bin. Spray ahead of the body (separated by two or more empty bins) does not count. The
+ * front is the largest x of a particle in the body plus half a spacing (the particle's extent). */
+static ry_status probe_front_x(const ry_sim *sim, double *v, ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    const int up = sim->dim - 1;
+    double ymin = INFINITY, xmin = INFINITY, xmax = -INFINITY;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        ymin = fmin(ymin, ps->f[RY_F_X + up][i]);
+    }
+    if (!isfinite(ymin)) {
+        *v = NAN;
+        return RY_OK;
+    }
+    double band = ymin + 3 * sim->dx;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->f[RY_F_X + up][i] > band) continue;
+        xmin = fmin(xmin, ps->f[RY_F_X][i]);
+        xmax = fmax(xmax, ps->f[RY_F_X][i]);
+    }
+    size_t nb = (size_t)((xmax - xmin) / sim->dx) + 1;
+    double *edge = malloc(nb * sizeof *edge);
+    RY_CHECK(err, edge != NULL, RY_ERR_NOMEM, "out of memory (front_x)");
+    for (size_t b = 0; b < nb; ++b) edge[b] = -INFINITY;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->f[RY_F_X + up][i] > band) continue;
+        double x = ps->f[RY_F_X][i];
+        size_t b = (size_t)((x - xmin) / sim->dx);
+        if (b >= nb) b = nb - 1;
+        edge[b] = fmax(edge[b], x);
+    }
+    double front = edge[0];
+    int gap = 0;
+    for (size_t b = 1; b < nb; ++b) {
+        if (edge[b] == -INFINITY) {
+            if (++gap >= 2) break;
+        } else {
+            gap = 0;
+            front = edge[b];
+        }
+    }
+    free(edge);
+    *v = front + 0.5 * sim->dx;
+    return RY_OK;
+}
+
+static const ry_probe p_mass = {"mass", "total fluid mass [kg]", probe_mass};
+static const ry_probe p_kin = {"kinetic_energy", "fluid kinetic energy [J]", probe_kinetic};
+static const ry_probe p_vmax = {"max_speed", "largest fluid speed [m/s]", probe_max_speed};
+static const ry_probe p_out = {"outside", "particles outside the domain", probe_outside};
+static const ry_probe p_front = {"front_x", "surge front position [m] (leading edge on the floor)",
+                                 probe_front_x};
+static const ry_probe *const all_probes[] = {&p_mass, &p_kin, &p_vmax, &p_out, &p_front, NULL};
+
+const ry_probe *const *ry_probes(void) { return all_probes; }
