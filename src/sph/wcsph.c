@@ -38,6 +38,10 @@ typedef struct wcsph {
     double *rho0m; /* reference density per material */
 } wcsph;
 
+/* Density in hydrostatic equilibrium under gravity, free surface half a spacing above the
+ * highest fluid particle: rho = rho0 (1 + rho0 g (H - z) / B)^(1/gamma) for Tait. */
+static void hydrostatic_init(ry_sim *sim, const wcsph *w);
+
 static const char *const density_names[] = {"continuity", "summation", NULL};
 static const char *const eos_names[] = {"tait", "linear", "ideal_gas", NULL};
 static const char *const diffusion_names[] = {"none", "molteni", "fourtakas", NULL};
@@ -99,6 +103,9 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         ps->f[RY_F_E][i] = 0;
         ps->f[RY_F_P][i] = 0;
     }
+    int hydro;
+    RY_TRY(ry_case_bool(c, "scheme.hydrostatic_init", &no, &hydro, err));
+    if (hydro) hydrostatic_init(sim, w);
     if (w->eos == EOS_IDEAL_GAS) {
         double e0;
         RY_TRY(ry_case_positive(c, "scheme.initial_energy", NULL, &e0, err));
@@ -140,6 +147,31 @@ static inline double eos_density(const wcsph *w, int mat, double p) {
 static inline double sound_speed(const wcsph *w, double rho, double p) {
     if (w->eos == EOS_IDEAL_GAS) return sqrt(fmax(w->gamma * p / rho, 0.0));
     return w->c0;
+}
+
+static void hydrostatic_init(ry_sim *sim, const wcsph *w) {
+    ry_particles *ps = &sim->ps;
+    double g2 = 0, up[3] = {0, 0, 0};
+    for (int d = 0; d < sim->dim; ++d) g2 += sim->gravity[d] * sim->gravity[d];
+    if (g2 <= 0) return;
+    double g = sqrt(g2);
+    for (int d = 0; d < sim->dim; ++d) up[d] = -sim->gravity[d] / g;
+    double top = -INFINITY;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double z = 0;
+        for (int d = 0; d < sim->dim; ++d) z += up[d] * ps->f[RY_F_X + d][i];
+        top = fmax(top, z);
+    }
+    top += 0.5 * sim->dx;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double z = 0;
+        for (int d = 0; d < sim->dim; ++d) z += up[d] * ps->f[RY_F_X + d][i];
+        int m = ps->material[i];
+        double p = w->rho0m[m] * g * (top - z);
+        ps->f[RY_F_RHO][i] = eos_density(w, m, p + w->p_background);
+    }
 }
 
 /* The kernel at a smoothing length other than the reference one (variable h). */
