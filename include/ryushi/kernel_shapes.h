@@ -146,4 +146,23 @@ static inline double ry_kernel_dshape(ry_kernel_type t, double q) {
     }
 }
 
+/* f'(q) / q, finite at q = 0 for every kernel here: grad W = (sigma_d / h^(d+2)) f'(q)/q x_ij,
+ * so pair loops need no division by r. Closed forms where they are cheaper. */
+static inline double ry_kernel_dshape_over_q(ry_kernel_type t, double q) {
+    switch (t) {
+    case RY_KERNEL_WENDLAND_C2: {
+        if (q >= 2.0) return 0.0;
+        double u = 1.0 - 0.5 * q;
+        return -5.0 * u * u * u;
+    }
+    case RY_KERNEL_WENDLAND_C4: {
+        if (q >= 2.0) return 0.0;
+        double s = 0.5 * q, u = 1.0 - s, u2 = u * u;
+        return -14.0 / 3.0 * u2 * u2 * u * (1.0 + 5.0 * s);
+    }
+    default:
+        return q > 0.0 ? ry_kernel_dshape(t, q) / q : 0.0;
+    }
+}
+
 #endif

@@ -70,9 +70,14 @@ struct ry_sim {
     /* neighbour search */
     ry_cell_list cells;
     ry_nlist nl;
-    double nl_radius;
-    int reorder_every;   /* reorder particles along cells every so many searches (0: never) */
-    long searches;
+    double nl_radius;    /* support radius the list serves */
+    double nl_skin;      /* Verlet skin, a fraction of the radius: the list holds the pairs
+                            within radius (1 + skin) and is rebuilt when a particle has moved
+                            more than half the skin since the last build */
+    int reorder_every;   /* reorder particles along cells every so many builds (0: never) */
+    long searches;       /* list builds so far */
+    long nl_reuses;      /* steps that reused the list */
+    int f_xref;          /* field: positions at the last build (x, y, z consecutive ids) */
 
     /* scheme */
     const ry_scheme_type *scheme;
@@ -97,8 +102,11 @@ struct ry_sim {
 ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *err);
 void ry_sim_free(ry_sim *sim);
 
-/* Rebuilds the neighbour list for a support radius (reordering the particles along cells
- * every reorder_every calls). Schemes call this at the start of a step. */
+/* Brings the neighbour list up to date for a support radius: rebuilt (and the particles
+ * reordered along cells every reorder_every builds) when the radius or the particle count
+ * changed or a particle moved more than half the skin since the last build; otherwise the
+ * list is reused. Pair loops must skip pairs beyond the radius. Schemes call this at the
+ * start of each force evaluation. */
 ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err);
 
 /* Progress reports and the stop flag for ry_sim_run. */

@@ -4,5 +4,6 @@
 
 int ry_cli_bench(int argc, char **argv);
 int ry_cli_plot(int argc, char **argv);
+int ry_cli_validate(int argc, char **argv);
 
 #endif

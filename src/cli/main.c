@@ -30,6 +30,11 @@ static void usage(FILE *fp) {
             "        set the case up and report particles, memory and methods without running\n"
             "  ryushi bench neighbors [--quick] [--threads N]\n"
             "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
+            "  ryushi validate [dam_break|cavity|all] [--quick] [-o DIR] [--threads N]\n"
+            "        run the validation cases against their references, with plots\n"
+            "        (default output folder out/validate)\n"
+            "  ryushi bench [sph] [--quick] [--threads N]\n"
+            "        WCSPH dam-break throughput (particle-steps/s) at 4k to 250k particles\n"
             "  ryushi plot kernels -o FILE.png\n"
             "        the Lucy and Gaussian kernels and their derivatives (seed 000)\n"
             "  ryushi schemes | probes\n"
@@ -268,6 +273,7 @@ int main(int argc, char **argv) {
     if (strcmp(cmd, "info") == 0) return cmd_info(argc, argv);
     if (strcmp(cmd, "bench") == 0) return ry_cli_bench(argc, argv);
     if (strcmp(cmd, "plot") == 0) return ry_cli_plot(argc, argv);
+    if (strcmp(cmd, "validate") == 0) return ry_cli_validate(argc, argv);
     if (strcmp(cmd, "schemes") == 0) return cmd_list(1);
     if (strcmp(cmd, "probes") == 0) return cmd_list(0);
     return bad_usage("unknown command '%s'", cmd);

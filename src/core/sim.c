@@ -203,8 +203,16 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(ry_case_double(c, "time.cfl", &cfl, 1e-3, one, &sim->cfl, err));
     RY_TRY(ry_case_double(c, "time.dt_max", &dtmax, 0.0, INFINITY, &sim->dt_max, err));
     RY_TRY(ry_case_int(c, "time.max_steps", &maxsteps, 1, 1000000000000L, &sim->max_steps, err));
+    double skin = 0.15;
     RY_TRY(ry_case_int(c, "neighbors.reorder_every", &reorder, 0, 1000000, &reorder, err));
+    RY_TRY(ry_case_double(c, "neighbors.skin", &skin, 0.0, 1.0, &sim->nl_skin, err));
     sim->reorder_every = (int)reorder;
+    static const char *const xr[3] = {"xref_x", "xref_y", "xref_z"};
+    for (int d = 0; d < 3; ++d) {
+        int id;
+        RY_TRY(ry_particles_add_field(&sim->ps, xr[d], "m", d, 0, &id, err));
+        if (d == 0) sim->f_xref = id;
+    }
 
     char nb[256], def_out[300];
     base_name(ry_case_name(c), nb, sizeof nb);
@@ -238,18 +246,49 @@ void ry_sim_free(ry_sim *sim) {
     memset(sim, 0, sizeof *sim);
 }
 
+/* Largest squared displacement since the last list build. */
+static double max_drift2(const ry_sim *sim) {
+    const ry_particles *ps = &sim->ps;
+    double m = 0;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const double *x[3], *xr[3];
+    ry_particles_coords(ps, x);
+    for (int d = 0; d < dim; ++d) xr[d] = ps->f[sim->f_xref + d];
+#pragma omp parallel for schedule(static) reduction(max : m)
+    for (size_t i = 0; i < n; ++i) {
+        double r2 = 0;
+        for (int d = 0; d < dim; ++d) {
+            double e = x[d][i] - xr[d][i];
+            r2 += e * e;
+        }
+        m = fmax(m, r2);
+    }
+    return m;
+}
+
 ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const double skin = sim->nl_skin * radius;
+    if (sim->nl.offset && sim->nl.n == ps->n && radius == sim->nl_radius && skin > 0 &&
+        max_drift2(sim) < 0.25 * skin * skin) {
+        sim->nl_reuses++;
+        return RY_OK;
+    }
     const double *x[3];
-    ry_particles_coords(&sim->ps, x);
-    RY_TRY(ry_cells_build(&sim->cells, &sim->box, radius, sim->ps.n, x, err));
+    const double reach = radius + skin;
+    ry_particles_coords(ps, x);
+    RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
     if (sim->reorder_every > 0 && sim->searches % sim->reorder_every == 0) {
-        RY_TRY(ry_particles_permute(&sim->ps, sim->cells.order, err));
-        ry_particles_coords(&sim->ps, x);
-        RY_TRY(ry_cells_build(&sim->cells, &sim->box, radius, sim->ps.n, x, err));
+        RY_TRY(ry_particles_permute(ps, sim->cells.order, err));
+        ry_particles_coords(ps, x);
+        RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
     }
     sim->searches++;
     sim->nl_radius = radius;
-    return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, radius, sim->ps.n, x, err);
+    for (int d = 0; d < sim->dim; ++d)
+        memcpy(ps->f[sim->f_xref + d], x[d], ps->n * sizeof(double));
+    return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err);
 }
 
 size_t ry_sim_count_outside(const ry_sim *sim) {

@@ -72,7 +72,17 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
         RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "hi"), NULL, dim, hi, err));
         RY_TRY(ry_case_int(c, key(k, sizeof k, i, "layers"), &three, 1, 20, &layers, err));
         RY_TRY(ry_case_bool(c, key(k, sizeof k, i, "open_top"), &no, &open_top, err));
-        s = ry_fill_tank(ps, lo, hi, (int)layers, open_top, dx, &st, &added, err);
+        double lid[3] = {0, 0, 0};
+        int has_lid = ry_case_has(c, key(k, sizeof k, i, "lid_velocity"));
+        if (has_lid) {
+            RY_TRY(ry_case_vector(c, k, NULL, dim, lid, err));
+            char where2[256];
+            RY_CHECK(err, !open_top, RY_ERR_INPUT,
+                     "%s: key '%s': a sliding lid needs a closed tank (open_top: false)",
+                     ry_case_where(c, k, where2, sizeof where2), k);
+        }
+        s = ry_fill_tank(ps, lo, hi, (int)layers, open_top, has_lid ? lid : NULL, dx, &st, &added,
+                         err);
         break;
     }
     default: return ry_error_set(err, RY_ERR_INTERNAL, "unhandled body type %d", type);

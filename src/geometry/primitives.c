@@ -145,8 +145,8 @@ static int inside_tank_wall(const double *p, const void *ctx) {
 }
 
 ry_status ry_fill_tank(ry_particles *ps, const double *lo, const double *hi, int layers,
-                       int open_top, double dx, const ry_body_style *st, size_t *added,
-                       ry_error *err) {
+                       int open_top, const double *lid_velocity, double dx,
+                       const ry_body_style *st, size_t *added, ry_error *err) {
     RY_CHECK(err, layers >= 1, RY_ERR_INPUT, "tank: layers must be >= 1");
     tank_ctx t = {.dim = ps->dim, .open_top = open_top};
     double olo[3] = {0, 0, 0};
@@ -159,5 +159,17 @@ ry_status ry_fill_tank(ry_particles *ps, const double *lo, const double *hi, int
         olo[d] = lo[d] - layers * dx;
         n[d] = m + 2 * layers;
     }
-    return fill_lattice(ps, olo, n, dx, inside_tank_wall, &t, st, added, err);
+    size_t first = ps->n;
+    RY_TRY(fill_lattice(ps, olo, n, dx, inside_tank_wall, &t, st, added, err));
+    if (lid_velocity && !open_top) {
+        const int up = ps->dim - 1;
+        for (size_t i = first; i < ps->n; ++i) {
+            int lid = ps->f[RY_F_X + up][i] > t.hi[up];
+            for (int d = 0; d < up; ++d)
+                if (ps->f[RY_F_X + d][i] < t.lo[d] || ps->f[RY_F_X + d][i] > t.hi[d]) lid = 0;
+            if (lid)
+                for (int d = 0; d < ps->dim; ++d) ps->f[RY_F_VX + d][i] = lid_velocity[d];
+        }
+    }
+    return RY_OK;
 }

@@ -34,6 +34,7 @@ typedef struct wcsph {
     double vmax, amax, numax, hmax; /* from the last force evaluation */
     int have_forces;
     int f_vh[3], f_rhoh, f_eh, f_hh, f_vg[3];
+    int f_prho2, f_vol, f_mu, f_cs, f_isfluid, f_visc; /* per-evaluation scratch */
     double *Bm;    /* Tait coefficient per material */
     double *rho0m; /* reference density per material */
 } wcsph;
@@ -90,6 +91,12 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
                                   err));
     RY_TRY(ry_particles_add_field(ps, "energy_half", "J/kg", -1, RY_FIELD_STATE, &w->f_eh, err));
     RY_TRY(ry_particles_add_field(ps, "h_half", "m", -1, RY_FIELD_STATE, &w->f_hh, err));
+    RY_TRY(ry_particles_add_field(ps, "p_over_rho2", "m^3/kg", -1, 0, &w->f_prho2, err));
+    RY_TRY(ry_particles_add_field(ps, "volume", "m^3", -1, 0, &w->f_vol, err));
+    RY_TRY(ry_particles_add_field(ps, "dynamic_viscosity", "Pa s", -1, 0, &w->f_mu, err));
+    RY_TRY(ry_particles_add_field(ps, "sound_speed", "m/s", -1, 0, &w->f_cs, err));
+    RY_TRY(ry_particles_add_field(ps, "is_fluid", "1", -1, 0, &w->f_isfluid, err));
+    RY_TRY(ry_particles_add_field(ps, "viscous_coupling", "1", -1, 0, &w->f_visc, err));
 
     w->Bm = calloc((size_t)sim->nmat, sizeof *w->Bm);
     w->rho0m = calloc((size_t)sim->nmat, sizeof *w->rho0m);
@@ -199,6 +206,7 @@ static void density_summation(ry_sim *sim, const wcsph *w) {
     ry_particles_coords(ps, x);
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
+    const double rad2 = sim->nl_radius * sim->nl_radius;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
@@ -209,6 +217,7 @@ static void density_summation(ry_sim *sim, const wcsph *w) {
             for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
             ry_box_min_image(&sim->box, dx);
             for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+            if (r2 >= rad2) continue;
             double r = sqrt(r2);
             s += m[j] * (w->variable_h ? w_h(k, r, 0.5 * (hh[i] + hh[j])) : ry_kernel_w(k, r));
         }
@@ -230,6 +239,7 @@ static void wall_pass(ry_sim *sim, const wcsph *w) {
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
     const double *g = sim->gravity;
+    const double rad2 = k->radius * k->radius;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_WALL) continue;
@@ -241,6 +251,7 @@ static void wall_pass(ry_sim *sim, const wcsph *w) {
             for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
             ry_box_min_image(&sim->box, dx);
             for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+            if (r2 >= rad2) continue;
             double wij = ry_kernel_w(k, sqrt(r2));
             double gr = 0;
             for (int d = 0; d < dim; ++d) gr += g[d] * dx[d];
@@ -268,10 +279,38 @@ typedef struct force_out {
     double amax2, vmax2;
 } force_out;
 
-/* Accelerations and rates for fluid particles; dim is a literal at each call site so that the
- * loops are specialised. */
-static inline __attribute__((always_inline)) void fluid_pass(ry_sim *sim, const wcsph *w,
-                                                             const int dim, force_out *res) {
+/* Per-particle quantities the pair loop reads (computed once per evaluation, so that the pair
+ * loop has no divisions by rho and no branches on the kind of j). */
+static void prepare_pairs(ry_sim *sim, const wcsph *w) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const int noslip = w->wall == WALL_NO_SLIP;
+    double *restrict prho2 = ps->f[w->f_prho2], *restrict vol = ps->f[w->f_vol];
+    double *restrict mu = ps->f[w->f_mu], *restrict cs = ps->f[w->f_cs];
+    double *restrict isfl = ps->f[w->f_isfluid], *restrict vis = ps->f[w->f_visc];
+    const double *restrict rho = ps->f[RY_F_RHO], *restrict p = ps->f[RY_F_P];
+    const double *restrict m = ps->f[RY_F_MASS];
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        const int fluid = ps->kind[i] == RY_KIND_FLUID;
+        prho2[i] = p[i] / (rho[i] * rho[i]);
+        vol[i] = m[i] / rho[i];
+        mu[i] = w->laminar ? rho[i] * sim->mat[ps->material[i]].viscosity : 0.0;
+        cs[i] = sound_speed(w, rho[i], p[i]);
+        isfl[i] = fluid ? 1.0 : 0.0;
+        /* Viscous coupling: fluid, and no-slip walls (through their ghost velocity). */
+        vis[i] = (fluid || noslip) ? 1.0 : 0.0;
+        /* Velocity seen by viscous terms: the ghost velocity on no-slip walls. */
+        if (fluid || !noslip)
+            for (int d = 0; d < dim; ++d) ps->f[w->f_vg[d]][i] = ps->f[RY_F_VX + d][i];
+    }
+}
+
+/* Accelerations and rates of fluid particles. dim and the kernel type are literals at each call
+ * site, so the loop is compiled once per (dimension, kernel) with the kernel inlined. */
+static inline __attribute__((always_inline)) void
+fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, force_out *res) {
     ry_particles *ps = &sim->ps;
     const ry_kernel *k = &sim->kernel;
     const size_t n = ps->n;
@@ -285,96 +324,117 @@ static inline __attribute__((always_inline)) void fluid_pass(ry_sim *sim, const 
     }
     const double *restrict m = ps->f[RY_F_MASS];
     const double *restrict rho = ps->f[RY_F_RHO];
-    const double *restrict p = ps->f[RY_F_P];
     const double *restrict hh = ps->f[RY_F_H];
+    const double *restrict prho2 = ps->f[w->f_prho2];
+    const double *restrict vol = ps->f[w->f_vol];
+    const double *restrict mu = ps->f[w->f_mu];
+    const double *restrict cs = ps->f[w->f_cs];
+    const double *restrict isfl = ps->f[w->f_isfluid];
+    const double *restrict vis = ps->f[w->f_visc];
     double *restrict drho = ps->f[RY_F_DRHO];
     double *restrict de = ps->f[RY_F_DE];
     const uint8_t *restrict kind = ps->kind;
-    const uint8_t *restrict mat = ps->material;
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
-    const double h0 = k->h, eta2 = 0.01 * h0 * h0;
+    const double h0 = k->h, eta2 = 0.01 * h0 * h0, inv_h0 = 1.0 / h0;
+    const double dnorm_h = k->dnorm * inv_h0; /* (dW/dr) / r = dnorm_h f'(q)/q */
+    const double rad2 = sim->nl_radius * sim->nl_radius;
     const double *g = sim->gravity;
     const int cont = w->density == DENS_CONTINUITY;
-    const int noslip = w->wall == WALL_NO_SLIP;
+    const int varh = w->variable_h, energy = w->energy;
     const double diff = w->diffusion != DIFF_NONE ? 2.0 * w->delta * h0 * w->c0 : 0.0;
     const int fourtakas = w->diffusion == DIFF_FOURTAKAS;
     const double alpha = w->alpha, beta = w->beta;
     const int periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
+    const double inv_c02 = 1.0 / (w->c0 * w->c0);
+    const double *rho0m = w->rho0m;
     double amax2 = 0, vmax2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : amax2, vmax2)
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)
     for (size_t i = 0; i < n; ++i) {
         if (kind[i] != RY_KIND_FLUID) continue;
-        const double rhoi = rho[i], pi = p[i], hi = hh[i];
-        const double pri = pi / (rhoi * rhoi);
-        const double mui = rhoi * sim->mat[mat[i]].viscosity;
-        const double ci = sound_speed(w, rhoi, pi);
-        const double rho0i = w->rho0m[mat[i]];
-        double ai[3] = {0, 0, 0}, dr = 0, dd = 0, dei = 0;
+        const double rhoi = rho[i], pri = prho2[i], mui = mu[i], ci = cs[i], hi = hh[i];
+        const double inv_rhoi = 1.0 / rhoi;
+        const double fh = fourtakas ? rho0m[ps->material[i]] * inv_c02 : 0.0;
+        /* Scalars, not arrays, so that accumulators stay in registers; z terms vanish at
+         * compile time in 2D. */
+        const double xi = x[0][i], yi = x[1][i], zi = dim > 2 ? x[2][i] : 0.0;
+        const double ui = v[0][i], vi = v[1][i], wi = dim > 2 ? v[2][i] : 0.0;
+        const double gx = g[0], gy = g[1], gz = dim > 2 ? g[2] : 0.0;
+        double ax = 0, ay = 0, az = 0, dr = 0, dd = 0, dei = 0;
         for (size_t q = off[i]; q < off[i + 1]; ++q) {
             const uint32_t j = nb[q];
-            double dx[3] = {0, 0, 0}, r2 = 0;
-            for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
-            if (periodic) ry_box_min_image(&sim->box, dx);
-            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
-            if (r2 <= 0) continue;
-            const double r = sqrt(r2);
-            const double fw = w->variable_h ? dwdr_h(k, r, 0.5 * (hi + hh[j])) / r
-                                            : ry_kernel_dwdr(k, r) / r;
-            const int wallj = kind[j] != RY_KIND_FLUID;
-            const double rhoj = rho[j], pj = p[j], mj = m[j];
-            /* Velocity of j: the ghost velocity of a no-slip wall for viscous terms. */
-            double vij[3] = {0, 0, 0}, vdx = 0;
-            const int visc_ghost = wallj && noslip;
-            for (int d = 0; d < dim; ++d) {
-                vij[d] = v[d][i] - (visc_ghost ? vg[d][j] : v[d][j]);
-                vdx += vij[d] * dx[d];
+            double dxv[3] = {xi - x[0][j], yi - x[1][j], dim > 2 ? zi - x[2][j] : 0.0};
+            if (periodic) ry_box_min_image(&sim->box, dxv);
+            const double dx = dxv[0], dy = dxv[1], dz = dxv[2];
+            const double r2 = dx * dx + dy * dy + dz * dz;
+            if (r2 >= rad2 || r2 <= 0) continue; /* outside the support (Verlet skin) */
+            double fw;
+            if (varh) {
+                const double r = sqrt(r2);
+                fw = dwdr_h(k, r, 0.5 * (hi + hh[j])) / r;
+            } else {
+                fw = dnorm_h * ry_kernel_dshape_over_q(kt, sqrt(r2) * inv_h0);
             }
-            double pi_ij = 0;
-            if (vdx < 0 && (alpha > 0 || beta > 0)) {
-                const double hij = w->variable_h ? 0.5 * (hi + hh[j]) : h0;
-                const double mu = hij * vdx / (r2 + 0.01 * hij * hij);
-                const double cij = 0.5 * (ci + sound_speed(w, rhoj, pj));
-                pi_ij = (-alpha * cij * mu + beta * mu * mu) / (0.5 * (rhoi + rhoj));
-            }
-            const double fp = -mj * (pri + pj / (rhoj * rhoj) + pi_ij) * fw;
-            for (int d = 0; d < dim; ++d) ai[d] += fp * dx[d];
-            if (mui > 0 && (!wallj || noslip)) {
-                const double muj = wallj ? mui : rhoj * sim->mat[mat[j]].viscosity;
-                const double fv = mj * (mui + muj) / (rhoi * rhoj) * fw * r2 / (r2 + eta2);
-                for (int d = 0; d < dim; ++d) ai[d] += fv * vij[d];
-            }
-            if (cont) {
-                /* Continuity with the wall's own (prescribed) velocity. */
-                double vdw = 0;
-                for (int d = 0; d < dim; ++d) vdw += (v[d][i] - v[d][j]) * dx[d];
-                dr += mj / rhoj * vdw * fw;
-                if (diff > 0 && !wallj) {
-                    double drj = rhoj - rhoi;
-                    if (fourtakas) {
-                        double gdx = 0;
-                        for (int d = 0; d < dim; ++d) gdx += g[d] * dx[d];
-                        drj += rho0i * gdx / (w->c0 * w->c0);
-                    }
-                    dd += -drj * fw * r2 / (r2 + eta2) * mj / rhoj;
-                }
-            }
-            if (w->energy) dei += 0.5 * mj * (pri + pj / (rhoj * rhoj) + pi_ij) * vdx * fw;
+            const double uj = v[0][j], vj = v[1][j], wj = dim > 2 ? v[2][j] : 0.0;
+            const double ugj = vg[0][j], vgj = vg[1][j], wgj = dim > 2 ? vg[2][j] : 0.0;
+            const double vx = ui - ugj, vy = vi - vgj, vz = wi - wgj;
+            const double vdx = vx * dx + vy * dy + vz * dz;
+            const double vdw = (ui - uj) * dx + (vi - vj) * dy + (wi - wj) * dz;
+            const double ieta = 1.0 / (r2 + eta2);
+            /* Monaghan's artificial viscosity, active for approaching pairs only. */
+            const double mu_ij = h0 * (vdx < 0.0 ? vdx : 0.0) * ieta;
+            const double rhoj = rho[j], volj = vol[j], isj = isfl[j];
+            const double pi_ij =
+                (-alpha * 0.5 * (ci + cs[j]) * mu_ij + beta * mu_ij * mu_ij) * 2.0 / (rhoi + rhoj);
+            const double mj = m[j];
+            const double fp = -mj * (pri + prho2[j] + pi_ij) * fw;
+            /* Morris et al. (1997) laminar viscosity (a wall takes the fluid's viscosity). */
+            const double muj = isj > 0.0 ? mu[j] : mui;
+            const double fv = vis[j] * volj * (mui + muj) * inv_rhoi * fw * r2 * ieta;
+            ax += fp * dx + fv * vx;
+            ay += fp * dy + fv * vy;
+            if (dim > 2) az += fp * dz + fv * vz;
+            dr += volj * vdw * fw;
+            double drj = rhoj - rhoi;
+            if (fourtakas) drj += fh * (gx * dx + gy * dy + gz * dz);
+            dd -= isj * drj * fw * r2 * ieta * volj;
+            if (energy) dei += 0.5 * mj * (pri + prho2[j] + pi_ij) * vdx * fw;
         }
+        const double ai[3] = {ax + gx, ay + gy, az + gz}, vi3[3] = {ui, vi, wi};
         double a2 = 0, v2 = 0;
         for (int d = 0; d < dim; ++d) {
-            ai[d] += g[d];
             a[d][i] = ai[d];
             a2 += ai[d] * ai[d];
-            v2 += v[d][i] * v[d][i];
+            v2 += vi3[d] * vi3[d];
         }
         if (cont) drho[i] = rhoi * dr + diff * dd;
-        if (w->energy) de[i] = dei;
+        if (energy) de[i] = dei;
         amax2 = fmax(amax2, a2);
         vmax2 = fmax(vmax2, v2);
     }
     res->amax2 = amax2;
     res->vmax2 = vmax2;
+}
+
+/* Picks the specialised pair loop. */
+static void fluid_forces(ry_sim *sim, const wcsph *w, force_out *res) {
+#define RY_WCSPH_CASE_(kt)                                                                         \
+    case kt:                                                                                       \
+        if (sim->dim == 2)                                                                         \
+            fluid_pass(sim, w, 2, kt, res);                                                        \
+        else                                                                                       \
+            fluid_pass(sim, w, 3, kt, res);                                                        \
+        break;
+    switch (sim->kernel.type) {
+        RY_WCSPH_CASE_(RY_KERNEL_CUBIC)
+        RY_WCSPH_CASE_(RY_KERNEL_QUINTIC)
+        RY_WCSPH_CASE_(RY_KERNEL_WENDLAND_C2)
+        RY_WCSPH_CASE_(RY_KERNEL_WENDLAND_C4)
+        RY_WCSPH_CASE_(RY_KERNEL_LUCY)
+        RY_WCSPH_CASE_(RY_KERNEL_GAUSSIAN)
+    default: break;
+    }
+#undef RY_WCSPH_CASE_
 }
 
 /* Evaluates all rates at the current (predicted) state. */
@@ -394,11 +454,9 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     for (size_t i = 0; i < n; ++i)
         if (ps->kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, ps->material[i], rho[i], e[i]);
     wall_pass(sim, w);
+    prepare_pairs(sim, w);
     force_out res;
-    if (sim->dim == 2)
-        fluid_pass(sim, w, 2, &res);
-    else
-        fluid_pass(sim, w, 3, &res);
+    fluid_forces(sim, w, &res);
     w->amax = sqrt(res.amax2);
     w->vmax = sqrt(res.vmax2);
     w->have_forces = 1;

@@ -15,6 +15,8 @@
 #include "ryushi/geometry.h"
 #include "ryushi/output.h"
 
+static const double RY_PI = 3.14159265358979323846;
+
 static void test_box_and_tank_counts(void **state) {
     (void)state;
     ry_particles ps;
@@ -32,10 +34,10 @@ static void test_box_and_tank_counts(void **state) {
     }
     assert_true(fabs(xmin - 0.003125) < 1e-12 && fabs(xmax - 0.246875) < 1e-12);
     /* Open tank, 3 layers: floor 166 x 3 plus two sides 3 x 91. */
-    assert_int_equal(ry_fill_tank(&ps, lo, thi, 3, 1, 0.00625, &wall, &added, &err), RY_OK);
+    assert_int_equal(ry_fill_tank(&ps, lo, thi, 3, 1, NULL, 0.00625, &wall, &added, &err), RY_OK);
     assert_int_equal(added, 166 * 3 + 2 * 3 * 91);
     /* Closed tank: the whole frame. */
-    assert_int_equal(ry_fill_tank(&ps, lo, thi, 2, 0, 0.00625, &wall, &added, &err), RY_OK);
+    assert_int_equal(ry_fill_tank(&ps, lo, thi, 2, 0, NULL, 0.00625, &wall, &added, &err), RY_OK);
     assert_int_equal(added, 164 * 92 - 160 * 88);
     /* No wall particle inside the cavity. */
     for (size_t i = 0; i < ps.n; ++i) {
@@ -58,17 +60,17 @@ static void test_sphere_cylinder_volume(void **state) {
     double c[3] = {0.1, 0.2, 0.3};
     assert_int_equal(ry_particles_init(&ps, 2, &err), RY_OK);
     assert_int_equal(ry_fill_sphere(&ps, c, 1.0, 0.02, &st, &added, &err), RY_OK);
-    assert_true(fabs(added * 0.02 * 0.02 / M_PI - 1.0) < 0.01); /* circle area */
+    assert_true(fabs(added * 0.02 * 0.02 / RY_PI - 1.0) < 0.01); /* circle area */
     double base[3] = {0, 0, 0}, axis[3] = {0, 0, 2};
     assert_int_equal(ry_fill_cylinder(&ps, base, axis, 1, 0.5, 0, 0.05, &st, &added, &err),
                      RY_ERR_INPUT); /* 3D only */
     ry_particles_free(&ps);
     assert_int_equal(ry_particles_init(&ps, 3, &err), RY_OK);
     assert_int_equal(ry_fill_sphere(&ps, c, 1.0, 0.04, &st, &added, &err), RY_OK);
-    assert_true(fabs(added * pow(0.04, 3) / (4.0 / 3.0 * M_PI) - 1.0) < 0.01);
+    assert_true(fabs(added * pow(0.04, 3) / (4.0 / 3.0 * RY_PI) - 1.0) < 0.01);
     assert_int_equal(ry_fill_cylinder(&ps, base, axis, 2.0, 0.5, 0.3, 0.02, &st, &added, &err),
                      RY_OK);
-    double tube = M_PI * (0.25 - 0.09) * 2.0;
+    double tube = RY_PI * (0.25 - 0.09) * 2.0;
     assert_true(fabs(added * pow(0.02, 3) / tube - 1.0) < 0.03);
     ry_particles_free(&ps);
 }

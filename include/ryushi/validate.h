@@ -1,0 +1,42 @@
+/* ryushi — validation: runs cases and compares their measurements with reference data. */
+#ifndef RYUSHI_VALIDATE_H
+#define RYUSHI_VALIDATE_H
+
+#include <stdio.h>
+
+#include "ryushi/csv.h"
+#include "ryushi/sim.h"
+
+/* Loads a case file, applies overrides ("key=value"), sets it up with output in out_dir and
+ * runs it. On success sim holds the final state (the caller frees it with ry_sim_free). */
+ry_status ry_run_case_file(const char *path, int nset, const char *const *sets,
+                           const char *out_dir, ry_sim *sim, ry_run_stats *stats, ry_error *err);
+
+/* Surge front against Martin & Moyce: Z = front_x / a against T = t sqrt(2 g / a). */
+typedef struct ry_front_cmp {
+    int npoints;       /* reference points compared (T <= T_max) */
+    double max_dev;    /* largest |Z - Z_ref| */
+    double rms_dev;    /* RMS of Z - Z_ref */
+} ry_front_cmp;
+/* series: a table with columns t and front_x; ref: columns T and Z. */
+ry_status ry_compare_front(const ry_table *series, const ry_table *ref, double a, double g,
+                           double T_max, ry_front_cmp *out, ry_error *err);
+/* First time front_x reaches x_wall (linear interpolation between rows); NAN if never. */
+double ry_front_arrival(const ry_table *series, double x_wall);
+/* Largest |m(t) - m(0)| / m(0) of the column `mass`. */
+double ry_mass_drift(const ry_table *series);
+/* Largest value of a column (e.g. outside, in_wall); 0 when absent. */
+double ry_column_max(const ry_table *series, const char *name);
+
+/* Velocity component comp (0 = u, 1 = v) at n points, interpolated from fluid and wall
+ * particles by a Shepard (normalised kernel) sum; walls contribute their own velocity. */
+ry_status ry_sample_velocity(const ry_sim *sim, int comp, size_t n, const double *px,
+                             const double *py, double *out, ry_error *err);
+/* Cavity centrelines against Ghia et al.: u along x = L/2 at the reference's y/L and v along
+ * y = L/2 at its x/L, for a cavity [0, L]^2 with lid speed U. Writes centreline_u.csv and
+ * centreline_v.csv in out_dir and returns the RMS of (u - u_ref)/U and (v - v_ref)/U. */
+ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_table *ghia_u,
+                                const ry_table *ghia_v, const char *out_dir, double *rms_u,
+                                double *rms_v, ry_error *err);
+
+#endif

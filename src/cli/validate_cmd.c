@@ -1,0 +1,310 @@
+/* ryushi validate: the full-resolution validation cases, compared with their references,
+ * with plots. Results are recorded in docs/validation.md. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "ryushi/atomic_file.h"
+#include "ryushi/plot.h"
+#include "ryushi/validate.h"
+
+typedef struct vctx {
+    const char *root; /* project folder: cases/ and data/reference/ */
+    const char *out;  /* output folder */
+    int quick;
+    int failures;
+} vctx;
+
+static void path_join(char *buf, size_t size, const char *a, const char *b) {
+    snprintf(buf, size, "%s/%s", a, b);
+}
+
+static int report(vctx *v, const ry_error *err) {
+    fprintf(stderr, "ryushi: validate: %s\n", err->msg);
+    v->failures++;
+    return 1;
+}
+
+static void verdict(vctx *v, const char *what, int ok) {
+    printf("  %-60s %s\n", what, ok ? "PASS" : "FAIL");
+    if (!ok) v->failures++;
+}
+
+/* Runs a case with overrides into out/sub, reads its series.csv. */
+static ry_status run_series(vctx *v, const char *case_file, const char *sub, int nset,
+                            const char *const *sets, ry_table *series, size_t *particles,
+                            double *wall_s, ry_sim *keep, ry_error *err) {
+    char cpath[4096], odir[4096], spath[4200];
+    path_join(cpath, sizeof cpath, v->root, case_file);
+    path_join(odir, sizeof odir, v->out, sub);
+    ry_sim sim;
+    ry_run_stats stats;
+    RY_TRY(ry_run_case_file(cpath, nset, sets, odir, &sim, &stats, err));
+    *particles = sim.ps.n;
+    *wall_s = stats.wall_s;
+    if (keep)
+        *keep = sim;
+    else
+        ry_sim_free(&sim);
+    path_join(spath, sizeof spath, odir, "series.csv");
+    return ry_table_read(series, spath, err);
+}
+
+static ry_status add_series(ry_plot *p, int panel, const char *label, const ry_table *t,
+                            const char *cx, double sx, const char *cy, double sy,
+                            ry_plot_style style, ry_error *err) {
+    int ix = ry_table_col(t, cx), iy = ry_table_col(t, cy);
+    RY_CHECK(err, ix >= 0 && iy >= 0, RY_ERR_INPUT, "missing column %s or %s", cx, cy);
+    double *x = ry_table_column(t, ix), *y = ry_table_column(t, iy);
+    ry_status st = RY_OK;
+    if (!x || !y) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    for (size_t r = 0; r < t->nrows && st == RY_OK; ++r) {
+        x[r] *= sx;
+        y[r] *= sy;
+    }
+    if (st == RY_OK) st = ry_plot_series(p, panel, label, t->nrows, x, y, style, err);
+    free(x);
+    free(y);
+    return st;
+}
+
+static int validate_dam_break(vctx *v) {
+    ry_error err = {0};
+    char ref_path[4096];
+    path_join(ref_path, sizeof ref_path, v->root,
+              "data/reference/martin_moyce1952_n2_2_surge_front_table2.csv");
+    ry_table ref;
+    if (ry_table_read(&ref, ref_path, &err) != RY_OK) return report(v, &err);
+    const double a = 0.05715, g = 9.81;
+    const int nres = v->quick ? 1 : 3;
+    const int per_a[3] = {20, 40, 80};
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 2, 1400, 560, &err) != RY_OK) return report(v, &err);
+    ry_plot_panel(p, 0, "Martin & Moyce column (n^2 = 2)", "T = t sqrt(2g/a)", "Z = front / a",
+                  &err);
+    ry_plot_panel(p, 1, "seed 001 dam break", "t [s]", "front_x [m]", &err);
+    printf("Martin & Moyce (1952), n^2 = 2, a = %.5f m: surge front Z(T), T <= 3\n", a);
+    printf("  %-10s %10s %10s %10s %12s %8s %8s %8s\n", "spacing", "particles", "max|dZ|",
+           "rms dZ", "mass drift", "outside", "in_wall", "wall_s");
+    for (int r = 0; r < nres; ++r) {
+        char sp[64], sub[64], label[64];
+        snprintf(sp, sizeof sp, "spacing=%.10g", a / per_a[r]);
+        snprintf(sub, sizeof sub, "dam_break_mm_a%d", per_a[r]);
+        const char *sets[] = {sp, "time.end=0.18", "time.output_interval=0.001",
+                              "output.vtk=false",
+                              "measure=[front_x, mass, kinetic_energy, outside, in_wall]"};
+        ry_table s;
+        size_t np;
+        double ws;
+        if (run_series(v, "cases/dam_break_mm.yaml", sub, 5, sets, &s, &np, &ws, NULL, &err) !=
+            RY_OK) {
+            report(v, &err);
+            continue;
+        }
+        ry_front_cmp cmp;
+        if (ry_compare_front(&s, &ref, a, g, 3.0, &cmp, &err) != RY_OK) report(v, &err);
+        printf("  a/%-8d %10zu %10.3f %10.3f %12.2e %8.0f %8.0f %8.1f\n", per_a[r], np,
+               cmp.max_dev, cmp.rms_dev, ry_mass_drift(&s), ry_column_max(&s, "outside"),
+               ry_column_max(&s, "in_wall"), ws);
+        snprintf(label, sizeof label, "ryushi a/%d", per_a[r]);
+        add_series(p, 0, label, &s, "t", sqrt(2 * g / a), "front_x", 1 / a, ry_plot_style_line(),
+                   &err);
+        char what[128];
+        snprintf(what, sizeof what, "a/%d: fluid mass conserved to 1e-12", per_a[r]);
+        verdict(v, what, ry_mass_drift(&s) <= 1e-12);
+        snprintf(what, sizeof what, "a/%d: no fluid particle outside the tank or in a wall",
+                 per_a[r]);
+        verdict(v, what, ry_column_max(&s, "outside") == 0 && ry_column_max(&s, "in_wall") == 0);
+        ry_table_free(&s);
+    }
+    add_series(p, 0, "Martin & Moyce (1952)", &ref, "T", 1, "Z", 1,
+               ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    ry_plot_xrange(p, 0, 0, 3.5, &err);
+    ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
+
+    const double seed_dx[3] = {0.0125, 0.00625, 0.003125};
+    const char *seed_name[3] = {"20x40", "40x80", "80x160"};
+    printf("seed 001 dam break: time the front reaches the right wall (seed: about 0.32 s)\n");
+    printf("  %-10s %10s %12s %12s %8s %8s %8s\n", "columns", "particles", "t_wall [s]",
+           "mass drift", "outside", "in_wall", "wall_s");
+    for (int r = 0; r < nres; ++r) {
+        char sp[64], sub[64];
+        snprintf(sp, sizeof sp, "spacing=%.10g", seed_dx[r]);
+        snprintf(sub, sizeof sub, "dam_break_seed_%s", seed_name[r]);
+        const char *sets[] = {sp, "time.end=0.6", "time.output_interval=0.0025",
+                              "output.vtk=false",
+                              "measure=[front_x, mass, kinetic_energy, outside, in_wall]"};
+        ry_table s;
+        size_t np;
+        double ws;
+        if (run_series(v, "cases/dam_break_seed.yaml", sub, 5, sets, &s, &np, &ws, NULL, &err) !=
+            RY_OK) {
+            report(v, &err);
+            continue;
+        }
+        double tw = ry_front_arrival(&s, 1.0 - 0.25 * seed_dx[r]);
+        printf("  %-10s %10zu %12.4f %12.2e %8.0f %8.0f %8.1f\n", seed_name[r], np, tw,
+               ry_mass_drift(&s), ry_column_max(&s, "outside"), ry_column_max(&s, "in_wall"),
+               ws);
+        char what[128];
+        snprintf(what, sizeof what, "%s: front reaches the wall between 0.28 s and 0.36 s",
+                 seed_name[r]);
+        verdict(v, what, tw >= 0.28 && tw <= 0.36);
+        snprintf(what, sizeof what, "%s: mass conserved to 1e-12, none outside or in a wall",
+                 seed_name[r]);
+        verdict(v, what,
+                ry_mass_drift(&s) <= 1e-12 && ry_column_max(&s, "outside") == 0 &&
+                    ry_column_max(&s, "in_wall") == 0);
+        add_series(p, 1, seed_name[r], &s, "t", 1, "front_x", 1, ry_plot_style_line(), &err);
+        ry_table_free(&s);
+    }
+    double sx[2] = {0.32, 0.32}, sy[2] = {0.2, 1.05};
+    ry_plot_style dash = ry_plot_style_line();
+    dash.dash = RY_PLOT_DASH_DASHED;
+    ry_plot_series(p, 1, "seed: wall at 0.32 s", 2, sx, sy, dash, &err);
+    ry_plot_legend(p, 1, RY_PLOT_LEGEND_SE, &err);
+    char png[4096];
+    path_join(png, sizeof png, v->out, "dam_break_front.png");
+    if (ry_plot_write_png(p, png, &err) != RY_OK) report(v, &err);
+    else printf("  plot: %s\n", png);
+    ry_plot_free(p);
+    ry_table_free(&ref);
+    return 0;
+}
+
+static int validate_cavity(vctx *v) {
+    ry_error err = {0};
+    char pu[4096], pv[4096];
+    path_join(pu, sizeof pu, v->root, "data/reference/ghia1982_re100_u_vertical_centreline.csv");
+    path_join(pv, sizeof pv, v->root, "data/reference/ghia1982_re100_v_horizontal_centreline.csv");
+    ry_table gu, gv;
+    if (ry_table_read(&gu, pu, &err) != RY_OK) return report(v, &err);
+    if (ry_table_read(&gv, pv, &err) != RY_OK) {
+        ry_table_free(&gu);
+        return report(v, &err);
+    }
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 2, 1400, 600, &err) != RY_OK) return report(v, &err);
+    ry_plot_panel(p, 0, "u on the vertical centreline", "u / U", "y / L", &err);
+    ry_plot_panel(p, 1, "v on the horizontal centreline", "x / L", "v / U", &err);
+    printf("lid-driven cavity, Re = 100, against Ghia, Ghia & Shin (1982)\n");
+    printf("  %-10s %10s %10s %10s %8s\n", "grid", "particles", "rms u/U", "rms v/U", "wall_s");
+    const int nres = v->quick ? 1 : 2;
+    const int N[2] = {50, 100};
+    for (int r = 0; r < nres; ++r) {
+        char sp[64], sub[64], end[64];
+        snprintf(sp, sizeof sp, "spacing=%.10g", 1.0 / N[r]);
+        snprintf(sub, sizeof sub, "cavity_re100_%dx%d", N[r], N[r]);
+        snprintf(end, sizeof end, "time.end=%g", v->quick ? 10.0 : 30.0);
+        const char *sets[] = {sp, end, "output.vtk=false"};
+        ry_table s;
+        size_t np;
+        double ws, ru = NAN, rv = NAN;
+        ry_sim sim;
+        if (run_series(v, "cases/cavity_re100.yaml", sub, 3, sets, &s, &np, &ws, &sim, &err) !=
+            RY_OK) {
+            report(v, &err);
+            continue;
+        }
+        char odir[4096];
+        path_join(odir, sizeof odir, v->out, sub);
+        if (ry_cavity_centrelines(&sim, 1.0, 1.0, &gu, &gv, odir, &ru, &rv, &err) != RY_OK)
+            report(v, &err);
+        ry_sim_free(&sim);
+        ry_table_free(&s);
+        printf("  %3dx%-6d %10zu %10.4f %10.4f %8.1f\n", N[r], N[r], np, ru, rv, ws);
+        char what[128];
+        snprintf(what, sizeof what, "%dx%d: RMS of (u - u_Ghia)/U and (v - v_Ghia)/U <= 0.02",
+                 N[r], N[r]);
+        verdict(v, what, ru <= 0.02 && rv <= 0.02);
+        char label[64], path[4200];
+        snprintf(label, sizeof label, "ryushi %dx%d", N[r], N[r]);
+        ry_table cu, cv;
+        snprintf(path, sizeof path, "%s/centreline_u.csv", odir);
+        if (ry_table_read(&cu, path, &err) == RY_OK) {
+            add_series(p, 0, label, &cu, "u_over_U", 1, "y_over_L", 1, ry_plot_style_line(), &err);
+            ry_table_free(&cu);
+        }
+        snprintf(path, sizeof path, "%s/centreline_v.csv", odir);
+        if (ry_table_read(&cv, path, &err) == RY_OK) {
+            add_series(p, 1, label, &cv, "x_over_L", 1, "v_over_U", 1, ry_plot_style_line(), &err);
+            ry_table_free(&cv);
+        }
+    }
+    add_series(p, 0, "Ghia et al. (1982)", &gu, "u_over_U", 1, "y_over_L", 1,
+               ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    add_series(p, 1, "Ghia et al. (1982)", &gv, "x_over_L", 1, "v_over_U", 1,
+               ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    ry_plot_legend(p, 0, RY_PLOT_LEGEND_SE, &err);
+    ry_plot_legend(p, 1, RY_PLOT_LEGEND_SW, &err);
+    char png[4096];
+    path_join(png, sizeof png, v->out, "cavity_re100_centrelines.png");
+    if (ry_plot_write_png(p, png, &err) != RY_OK) report(v, &err);
+    else printf("  plot: %s\n", png);
+    ry_plot_free(p);
+
+    /* The seed's Re = 1 cavity: steady state (kinetic energy settles). */
+    ry_table s;
+    size_t np;
+    double ws;
+    const char *sets[] = {"output.vtk=false"};
+    if (run_series(v, "cases/cavity_seed.yaml", "cavity_seed", 1, sets, &s, &np, &ws, NULL,
+                   &err) == RY_OK) {
+        int ck = ry_table_col(&s, "kinetic_energy");
+        size_t n = s.nrows;
+        double e1 = ry_table_at(&s, n - 1, ck), e0 = ry_table_at(&s, n - 1 - n / 5, ck);
+        double change = fabs(e1 - e0) / e1;
+        printf("seed cavity, Re = 1, 40x40: kinetic energy %.4g J at t = 1 s, change over the "
+               "last 20%% of the run %.2f%%\n",
+               e1, 100 * change);
+        verdict(v, "Re = 1 cavity reaches a steady state (energy change < 5 %)", change < 0.05);
+        ry_table_free(&s);
+    } else {
+        report(v, &err);
+    }
+    ry_table_free(&gu);
+    ry_table_free(&gv);
+    return 0;
+}
+
+int ry_cli_validate(int argc, char **argv) {
+    vctx v = {RY_SOURCE_DIR, "out/validate", 0, 0};
+    const char *root_env = getenv("RY_SOURCE_DIR");
+    if (root_env && *root_env) v.root = root_env;
+    const char *what = "all";
+    for (int i = 2; i < argc; ++i) {
+        if (strcmp(argv[i], "--quick") == 0)
+            v.quick = 1;
+        else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
+            v.out = argv[++i];
+        else if (strcmp(argv[i], "--root") == 0 && i + 1 < argc)
+            v.root = argv[++i];
+        else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc)
+            omp_set_num_threads(atoi(argv[++i]) > 0 ? atoi(argv[i]) : 1);
+        else if (argv[i][0] != '-')
+            what = argv[i];
+        else {
+            fprintf(stderr, "ryushi: validate: unknown option '%s'\n", argv[i]);
+            return 2;
+        }
+    }
+    ry_error err = {0};
+    if (ry_mkdir_p(v.out, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        return 3;
+    }
+    int all = strcmp(what, "all") == 0;
+    if (!all && strcmp(what, "dam_break") != 0 && strcmp(what, "cavity") != 0) {
+        fprintf(stderr, "ryushi: validate: expected dam_break, cavity or all, got '%s'\n", what);
+        return 2;
+    }
+    if (all || strcmp(what, "dam_break") == 0) validate_dam_break(&v);
+    if (all || strcmp(what, "cavity") == 0) validate_cavity(&v);
+    printf("validate: %s (%d failure(s)); output in %s\n", v.failures ? "FAILED" : "passed",
+           v.failures, v.out);
+    return v.failures ? 1 : 0;
+}

@@ -1,0 +1,158 @@
+/* Validation helpers: running a case, comparing measured series with references. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ryushi/atomic_file.h"
+#include "ryushi/validate.h"
+
+ry_status ry_run_case_file(const char *path, int nset, const char *const *sets,
+                           const char *out_dir, ry_sim *sim, ry_run_stats *stats, ry_error *err) {
+    ry_case *c = NULL;
+    memset(sim, 0, sizeof *sim);
+    ry_status st = ry_case_load(&c, path, err);
+    for (int i = 0; i < nset && st == RY_OK; ++i) st = ry_case_override(c, sets[i], err);
+    if (st == RY_OK) st = ry_sim_setup(sim, c, out_dir, err);
+    if (st == RY_OK) st = ry_sim_open_output(sim, c, err);
+    if (st == RY_OK) st = ry_sim_run(sim, NULL, stats, err);
+    ry_case_free(c);
+    if (st != RY_OK) ry_sim_free(sim);
+    return st;
+}
+
+ry_status ry_compare_front(const ry_table *series, const ry_table *ref, double a, double g,
+                           double T_max, ry_front_cmp *out, ry_error *err) {
+    int ct = ry_table_col(series, "t"), cf = ry_table_col(series, "front_x");
+    int cT = ry_table_col(ref, "T"), cZ = ry_table_col(ref, "Z");
+    RY_CHECK(err, ct >= 0 && cf >= 0, RY_ERR_INPUT, "series has no columns t and front_x");
+    RY_CHECK(err, cT >= 0 && cZ >= 0, RY_ERR_INPUT, "reference has no columns T and Z");
+    size_t n = series->nrows;
+    double *T = malloc((n ? n : 1) * sizeof *T), *Z = malloc((n ? n : 1) * sizeof *Z);
+    if (!T || !Z) {
+        free(T);
+        free(Z);
+        return ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    }
+    double s = sqrt(2.0 * g / a);
+    for (size_t r = 0; r < n; ++r) {
+        T[r] = ry_table_at(series, r, ct) * s;
+        Z[r] = ry_table_at(series, r, cf) / a;
+    }
+    memset(out, 0, sizeof *out);
+    double sum2 = 0;
+    for (size_t r = 0; r < ref->nrows; ++r) {
+        double Tr = ry_table_at(ref, r, cT);
+        if (Tr > T_max) continue;
+        double Zs = ry_interp_linear(T, Z, n, Tr);
+        if (!isfinite(Zs)) continue;
+        double d = Zs - ry_table_at(ref, r, cZ);
+        out->max_dev = fmax(out->max_dev, fabs(d));
+        sum2 += d * d;
+        out->npoints++;
+    }
+    out->rms_dev = out->npoints ? sqrt(sum2 / out->npoints) : NAN;
+    free(T);
+    free(Z);
+    RY_CHECK(err, out->npoints > 0, RY_ERR_INPUT, "no reference point within the simulated time");
+    return RY_OK;
+}
+
+double ry_front_arrival(const ry_table *series, double x_wall) {
+    int ct = ry_table_col(series, "t"), cf = ry_table_col(series, "front_x");
+    if (ct < 0 || cf < 0) return NAN;
+    for (size_t r = 1; r < series->nrows; ++r) {
+        double f0 = ry_table_at(series, r - 1, cf), f1 = ry_table_at(series, r, cf);
+        if (f1 >= x_wall && f0 < x_wall) {
+            double t0 = ry_table_at(series, r - 1, ct), t1 = ry_table_at(series, r, ct);
+            return t0 + (x_wall - f0) / (f1 - f0) * (t1 - t0);
+        }
+    }
+    return NAN;
+}
+
+double ry_mass_drift(const ry_table *series) {
+    int cm = ry_table_col(series, "mass");
+    if (cm < 0 || series->nrows == 0) return NAN;
+    double m0 = ry_table_at(series, 0, cm), d = 0;
+    for (size_t r = 0; r < series->nrows; ++r)
+        d = fmax(d, fabs(ry_table_at(series, r, cm) - m0) / m0);
+    return d;
+}
+
+double ry_column_max(const ry_table *series, const char *name) {
+    int c = ry_table_col(series, name);
+    double m = 0;
+    if (c < 0) return 0;
+    for (size_t r = 0; r < series->nrows; ++r) m = fmax(m, ry_table_at(series, r, c));
+    return m;
+}
+
+ry_status ry_sample_velocity(const ry_sim *sim, int comp, size_t n, const double *px,
+                             const double *py, double *out, ry_error *err) {
+    RY_CHECK(err, sim->dim == 2 && comp >= 0 && comp < 2, RY_ERR_INPUT,
+             "velocity sampling is for 2D cases (u or v)");
+    const ry_particles *ps = &sim->ps;
+    const ry_kernel *k = &sim->kernel;
+    const double r2max = k->radius * k->radius;
+#pragma omp parallel for schedule(static)
+    for (size_t q = 0; q < n; ++q) {
+        double sw = 0, su = 0;
+        for (size_t i = 0; i < ps->n; ++i) {
+            double dx = ps->f[RY_F_X][i] - px[q], dy = ps->f[RY_F_Y][i] - py[q];
+            double r2 = dx * dx + dy * dy;
+            if (r2 >= r2max) continue;
+            double wv = ry_kernel_w(k, sqrt(r2)) * ps->f[RY_F_MASS][i] / ps->f[RY_F_RHO][i];
+            sw += wv;
+            su += wv * ps->f[RY_F_VX + comp][i];
+        }
+        out[q] = sw > 0 ? su / sw : NAN;
+    }
+    return RY_OK;
+}
+
+/* One centreline: samples at the reference coordinates, writes the CSV, returns the RMS. */
+static ry_status centreline(const ry_sim *sim, double L, double U, const ry_table *ref,
+                            const char *coord, const char *value, int comp, const char *path,
+                            double *rms, ry_error *err) {
+    int cc = ry_table_col(ref, coord), cv = ry_table_col(ref, value);
+    RY_CHECK(err, cc >= 0 && cv >= 0, RY_ERR_INPUT, "reference lacks columns %s, %s", coord, value);
+    size_t n = ref->nrows;
+    double *px = malloc(n * sizeof *px), *py = malloc(n * sizeof *py);
+    double *val = malloc(n * sizeof *val);
+    ry_status st = RY_OK;
+    if (!px || !py || !val) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    for (size_t r = 0; r < n && st == RY_OK; ++r) {
+        double s = ry_table_at(ref, r, cc) * L;
+        px[r] = comp == 0 ? 0.5 * L : s;
+        py[r] = comp == 0 ? s : 0.5 * L;
+    }
+    if (st == RY_OK) st = ry_sample_velocity(sim, comp, n, px, py, val, err);
+    ry_atomic_file f;
+    if (st == RY_OK) st = ry_atomic_open(&f, path, err);
+    if (st == RY_OK) {
+        double sum2 = 0;
+        fprintf(f.fp, "%s,%s,%s_ref\n", coord, value, value);
+        for (size_t r = 0; r < n; ++r) {
+            double sim_v = val[r] / U, ref_v = ry_table_at(ref, r, cv);
+            fprintf(f.fp, "%.6f,%.6f,%.6f\n", ry_table_at(ref, r, cc), sim_v, ref_v);
+            sum2 += (sim_v - ref_v) * (sim_v - ref_v);
+        }
+        *rms = sqrt(sum2 / (double)n);
+        st = ry_atomic_commit(&f, err);
+    }
+    free(px);
+    free(py);
+    free(val);
+    return st;
+}
+
+ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_table *ghia_u,
+                                const ry_table *ghia_v, const char *out_dir, double *rms_u,
+                                double *rms_v, ry_error *err) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/centreline_u.csv", out_dir);
+    RY_TRY(centreline(sim, L, U, ghia_u, "y_over_L", "u_over_U", 0, path, rms_u, err));
+    snprintf(path, sizeof path, "%s/centreline_v.csv", out_dir);
+    return centreline(sim, L, U, ghia_v, "x_over_L", "v_over_U", 1, path, rms_v, err);
+}
