@@ -8,9 +8,9 @@
 #include "ryushi/status.h"
 
 typedef struct ry_atomic_file {
-    FILE *fp;        /* write through this */
-    char *path;      /* final name */
-    char *tmp_path;  /* temporary name */
+    FILE *fp;       /* write through this */
+    char *path;     /* final name */
+    char *tmp_path; /* temporary name */
 } ry_atomic_file;
 
 /* Opens path's temporary file for writing (binary). */

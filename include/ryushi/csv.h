@@ -9,8 +9,8 @@
 typedef struct ry_table {
     int ncols;
     size_t nrows;
-    char **names;  /* ncols column names */
-    double *data;  /* row-major nrows x ncols */
+    char **names; /* ncols column names */
+    double *data; /* row-major nrows x ncols */
 } ry_table;
 
 /* Reads a CSV file of numbers with a header row; errors name the file, line and column. */

@@ -25,16 +25,16 @@ ry_status ry_fill_sphere(ry_particles *ps, const double *centre, double radius, 
                          const ry_body_style *st, size_t *added, ry_error *err);
 /* Filled (3D) cylinder from base centre along an axis (unit vector computed from axis) of a
  * length, with an outer radius and an inner radius (0 for solid; > 0 gives a tube). */
-ry_status ry_fill_cylinder(ry_particles *ps, const double *base, const double *axis,
-                           double length, double radius, double inner_radius, double dx,
-                           const ry_body_style *st, size_t *added, ry_error *err);
+ry_status ry_fill_cylinder(ry_particles *ps, const double *base, const double *axis, double length,
+                           double radius, double inner_radius, double dx, const ry_body_style *st,
+                           size_t *added, ry_error *err);
 /* Walls of `layers` particle layers around the box [lo, hi] (the inside stays empty); with
  * open_top the wall at the top (largest coordinate of the last dimension) is left out. With
  * lid_velocity (may be NULL) the top wall above the cavity moves with that velocity (a sliding
  * lid); the corners stay with the side walls. */
 ry_status ry_fill_tank(ry_particles *ps, const double *lo, const double *hi, int layers,
-                       int open_top, const double *lid_velocity, double dx,
-                       const ry_body_style *st, size_t *added, ry_error *err);
+                       int open_top, const double *lid_velocity, double dx, const ry_body_style *st,
+                       size_t *added, ry_error *err);
 
 /* Reads the case's `bodies` sequence and fills them. material_names has nmat entries. */
 ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,

@@ -36,21 +36,21 @@ static inline void ry_box_min_image(const ry_box *b, double *dx) {
 
 typedef struct ry_cell_list {
     int dim;
-    double lo[3];       /* origin of cell (0,0,0) */
-    double cell[3];     /* cell edge per direction (>= radius) */
-    int ncell[3];       /* cells per direction (1 in unused directions) */
-    size_t ncells;      /* product of ncell */
-    size_t n;           /* particles binned */
-    size_t *start;      /* ncells + 1 entries: particles of cell c are order[start[c]..start[c+1]) */
-    uint32_t *order;    /* particle indices sorted by cell (stable: by index within a cell) */
-    uint32_t *cell_of;  /* cell index of each particle */
+    double lo[3];      /* origin of cell (0,0,0) */
+    double cell[3];    /* cell edge per direction (>= radius) */
+    int ncell[3];      /* cells per direction (1 in unused directions) */
+    size_t ncells;     /* product of ncell */
+    size_t n;          /* particles binned */
+    size_t *start;     /* ncells + 1 entries: particles of cell c are order[start[c]..start[c+1]) */
+    uint32_t *order;   /* particle indices sorted by cell (stable: by index within a cell) */
+    uint32_t *cell_of; /* cell index of each particle */
     size_t cap_cells, cap_n;
 } ry_cell_list;
 
 typedef struct ry_nlist {
-    size_t n;          /* particles */
-    size_t *offset;    /* n + 1 entries */
-    uint32_t *j;       /* offset[n] entries */
+    size_t n;       /* particles */
+    size_t *offset; /* n + 1 entries */
+    uint32_t *j;    /* offset[n] entries */
     size_t cap_n, cap_j;
 } ry_nlist;
 
@@ -63,8 +63,7 @@ void ry_cells_free(ry_cell_list *cl);
 
 /* Neighbour list from a built cell list (OpenMP-parallel, deterministic). */
 ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_box *box,
-                               double radius, size_t n, const double *const x[3],
-                               ry_error *err);
+                               double radius, size_t n, const double *const x[3], ry_error *err);
 /* The same list by testing every pair: O(n^2), for tests and benchmarks only. */
 ry_status ry_nlist_build_brute(ry_nlist *nl, const ry_box *box, double radius, size_t n,
                                const double *const x[3], ry_error *err);

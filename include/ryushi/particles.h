@@ -69,13 +69,13 @@ typedef struct ry_particles {
     size_t cap; /* allocated */
     int nfields;
     int cap_fields;
-    double **f;           /* f[field][particle]; NULL for components >= dim */
-    ry_field_info *info;  /* per field */
-    int64_t *id;          /* stable id */
-    uint8_t *kind;        /* ry_kind */
-    uint8_t *material;    /* index into the simulation's materials */
-    int64_t next_id;      /* id given to the next particle added */
-    void *scratch;        /* reordering buffer */
+    double **f;          /* f[field][particle]; NULL for components >= dim */
+    ry_field_info *info; /* per field */
+    int64_t *id;         /* stable id */
+    uint8_t *kind;       /* ry_kind */
+    uint8_t *material;   /* index into the simulation's materials */
+    int64_t next_id;     /* id given to the next particle added */
+    void *scratch;       /* reordering buffer */
     size_t scratch_bytes;
 } ry_particles;
 

@@ -53,31 +53,31 @@ const ry_probe *const *ry_probes(void);
 struct ry_sim {
     int dim;
     ry_particles ps;
-    ry_box box;          /* domain: neighbour search, and particles leaving it */
-    double dx;           /* initial particle spacing [m] */
-    double h_over_dx;    /* smoothing length / spacing */
-    ry_kernel kernel;    /* at h = h_over_dx * dx */
-    double gravity[3];   /* [m/s^2] */
+    ry_box box;        /* domain: neighbour search, and particles leaving it */
+    double dx;         /* initial particle spacing [m] */
+    double h_over_dx;  /* smoothing length / spacing */
+    ry_kernel kernel;  /* at h = h_over_dx * dx */
+    double gravity[3]; /* [m/s^2] */
     int nmat;
     ry_material *mat;
 
     /* time */
     double t, t_end, dt;
-    double cfl;          /* Courant number for the scheme's time-step limits */
-    double dt_max;       /* upper bound on dt (0: none) */
+    double cfl;    /* Courant number for the scheme's time-step limits */
+    double dt_max; /* upper bound on dt (0: none) */
     long step, max_steps;
 
     /* neighbour search */
     ry_cell_list cells;
     ry_nlist nl;
-    double nl_radius;    /* support radius the list serves */
-    double nl_skin;      /* Verlet skin, a fraction of the radius: the list holds the pairs
-                            within radius (1 + skin) and is rebuilt when a particle has moved
-                            more than half the skin since the last build */
-    int reorder_every;   /* reorder particles along cells every so many builds (0: never) */
-    long searches;       /* list builds so far */
-    long nl_reuses;      /* steps that reused the list */
-    int f_xref;          /* field: positions at the last build (x, y, z consecutive ids) */
+    double nl_radius;  /* support radius the list serves */
+    double nl_skin;    /* Verlet skin, a fraction of the radius: the list holds the pairs
+                          within radius (1 + skin) and is rebuilt when a particle has moved
+                          more than half the skin since the last build */
+    int reorder_every; /* reorder particles along cells every so many builds (0: never) */
+    long searches;     /* list builds so far */
+    long nl_reuses;    /* steps that reused the list */
+    int f_xref;        /* field: positions at the last build (x, y, z consecutive ids) */
 
     /* scheme */
     const ry_scheme_type *scheme;
@@ -89,12 +89,12 @@ struct ry_sim {
 
     /* output */
     char *out_dir;
-    char *case_name;     /* base name of the case file, without extension */
+    char *case_name; /* base name of the case file, without extension */
     double output_interval;
     int write_vtk;
     int output_index;
     double next_output;
-    void *writer;        /* output state (pvd entries, series buffer) */
+    void *writer; /* output state (pvd entries, series buffer) */
 };
 
 /* Builds the simulation from a case; checks every key (unknown keys are errors). out_dir may
@@ -113,8 +113,8 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err);
 typedef struct ry_run_hooks {
     void (*progress)(void *ctx, const ry_sim *sim, double particle_steps_per_s, double eta_s);
     void *ctx;
-    double progress_interval_s;      /* wall seconds between progress calls */
-    volatile sig_atomic_t *stop;     /* set (by a signal handler) to end the run cleanly */
+    double progress_interval_s;  /* wall seconds between progress calls */
+    volatile sig_atomic_t *stop; /* set (by a signal handler) to end the run cleanly */
 } ry_run_hooks;
 
 /* Summary of a run. */

@@ -9,14 +9,14 @@
 
 /* Loads a case file, applies overrides ("key=value"), sets it up with output in out_dir and
  * runs it. On success sim holds the final state (the caller frees it with ry_sim_free). */
-ry_status ry_run_case_file(const char *path, int nset, const char *const *sets,
-                           const char *out_dir, ry_sim *sim, ry_run_stats *stats, ry_error *err);
+ry_status ry_run_case_file(const char *path, int nset, const char *const *sets, const char *out_dir,
+                           ry_sim *sim, ry_run_stats *stats, ry_error *err);
 
 /* Surge front against Martin & Moyce: Z = front_x / a against T = t sqrt(2 g / a). */
 typedef struct ry_front_cmp {
-    int npoints;       /* reference points compared (T <= T_max) */
-    double max_dev;    /* largest |Z - Z_ref| */
-    double rms_dev;    /* RMS of Z - Z_ref */
+    int npoints;    /* reference points compared (T <= T_max) */
+    double max_dev; /* largest |Z - Z_ref| */
+    double rms_dev; /* RMS of Z - Z_ref */
 } ry_front_cmp;
 /* series: a table with columns t and front_x; ref: columns T and Z. */
 ry_status ry_compare_front(const ry_table *series, const ry_table *ref, double a, double g,

@@ -15,7 +15,7 @@ static int dam_break_text(char *buf, size_t size, int dim, double dx, long steps
     if (dim == 2)
         return snprintf(
             buf, size,
-            "dimension: 2\nspacing: %.17g\nkernel: {type: wendland_c2, h_over_dx: 1.3}\n"
+            "dimension: 2\nspacing: %.17g\nkernel: {type: wendland_c2, h_over_dx: 1.4}\n"
             "gravity: [0, -9.81]\nmaterials: [{name: water, density: 1000, viscosity: 1e-6}]\n"
             "bodies:\n  - {type: box, lo: [0, 0], hi: [0.25, 0.5]}\n"
             "  - {type: tank, lo: [0, 0], hi: [1.0, 0.55], layers: 3, open_top: true}\n"
@@ -27,7 +27,7 @@ static int dam_break_text(char *buf, size_t size, int dim, double dx, long steps
             dx, steps);
     return snprintf(
         buf, size,
-        "dimension: 3\nspacing: %.17g\nkernel: {type: wendland_c2, h_over_dx: 1.3}\n"
+        "dimension: 3\nspacing: %.17g\nkernel: {type: wendland_c2, h_over_dx: 1.4}\n"
         "gravity: [0, 0, -9.81]\nmaterials: [{name: water, density: 1000, viscosity: 1e-6}]\n"
         "bodies:\n  - {type: box, lo: [0, 0, 0], hi: [0.25, 0.25, 0.5]}\n"
         "  - {type: tank, lo: [0, 0, 0], hi: [1.0, 0.25, 0.55], layers: 3, open_top: true}\n"
@@ -98,8 +98,8 @@ static int bench_sph(int quick, int max_threads) {
         for (int t = 1; t <= max_threads; t *= 2) {
             omp_set_num_threads(t);
             double r[8];
-            for (int k = 0; k < reps; ++k) r[k] = bench_once(sizes[s].dim, sizes[s].dx, steps, dir,
-                                                             &np, &bpp);
+            for (int k = 0; k < reps; ++k)
+                r[k] = bench_once(sizes[s].dim, sizes[s].dx, steps, dir, &np, &bpp);
             qsort(r, (size_t)reps, sizeof *r, cmp_double);
             double med = r[reps / 2];
             if (t == 1) base = med;

@@ -134,13 +134,15 @@ static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
     char e[32];
     fmt_duration(e, sizeof e, eta);
     if (p->tty) {
-        fprintf(stderr, "\r  t = %.4g / %.4g s  step %ld  dt = %.3g s  %.3g particle-steps/s  "
-                        "ETA %s   ",
+        fprintf(stderr,
+                "\r  t = %.4g / %.4g s  step %ld  dt = %.3g s  %.3g particle-steps/s  "
+                "ETA %s   ",
                 sim->t, sim->t_end, sim->step, sim->dt, rate, e);
         fflush(stderr);
     } else {
-        fprintf(stdout, "progress t=%.6g t_end=%.6g step=%ld dt=%.4g particle_steps_per_s=%.4g "
-                        "eta_s=%.0f\n",
+        fprintf(stdout,
+                "progress t=%.6g t_end=%.6g step=%ld dt=%.4g particle_steps_per_s=%.4g "
+                "eta_s=%.0f\n",
                 sim->t, sim->t_end, sim->step, sim->dt, rate, eta);
         fflush(stdout);
     }
@@ -168,9 +170,8 @@ static int cmd_run(int argc, char **argv) {
         return rc;
     }
     progress_ctx pc = {isatty(STDERR_FILENO)};
-    printf("ryushi %s: case %s, %s, %dD, %zu particles, %d thread(s), output in %s\n",
-           RY_VERSION, a.case_path, sim.scheme->name, sim.dim, sim.ps.n, omp_get_max_threads(),
-           sim.out_dir);
+    printf("ryushi %s: case %s, %s, %dD, %zu particles, %d thread(s), output in %s\n", RY_VERSION,
+           a.case_path, sim.scheme->name, sim.dim, sim.ps.n, omp_get_max_threads(), sim.out_dir);
     fflush(stdout);
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);

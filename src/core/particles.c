@@ -23,7 +23,9 @@ static char *dup_str(const char *s) {
     return d;
 }
 
-static int field_allocated(const ry_particles *ps, int comp) { return comp < ps->dim; }
+static int field_allocated(const ry_particles *ps, int comp) {
+    return comp < ps->dim;
+}
 
 static ry_status grow_fields(ry_particles *ps, ry_error *err) {
     if (ps->nfields < ps->cap_fields) return RY_OK;

@@ -32,8 +32,10 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         }
         /* Land on output times and the end time exactly (no sliver steps after them). */
         double target = fmin(sim->next_output, sim->t_end);
-        if (sim->t + dt > target - 1e-3 * dt) dt = target - sim->t;
-        else if (sim->t + 2 * dt > target) dt = 0.5 * (target - sim->t);
+        if (sim->t + dt > target - 1e-3 * dt)
+            dt = target - sim->t;
+        else if (sim->t + 2 * dt > target)
+            dt = 0.5 * (target - sim->t);
         sim->dt = dt;
         RY_TRY(sim->scheme->step(sim, sim->scheme_state, dt, err));
         sim->t += dt;

@@ -25,15 +25,20 @@ static ry_status static_step(ry_sim *sim, void *state, double dt, ry_error *err)
     (void)err;
     return RY_OK;
 }
-static void static_free(void *state) { (void)state; }
+static void static_free(void *state) {
+    (void)state;
+}
 
 static const ry_scheme_type scheme_static = {
-    "static", "particles do not move (geometry set-up and output only)", static_init, static_dt,
+    "static",    "particles do not move (geometry set-up and output only)",
+    static_init, static_dt,
     static_step, static_free};
 
 static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &scheme_static, NULL};
 
-const ry_scheme_type *const *ry_schemes(void) { return all_schemes; }
+const ry_scheme_type *const *ry_schemes(void) {
+    return all_schemes;
+}
 
 const ry_scheme_type *ry_scheme_find(const char *name) {
     for (int i = 0; all_schemes[i]; ++i)

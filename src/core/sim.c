@@ -57,8 +57,8 @@ static ry_status read_materials(ry_sim *sim, ry_case *c, ry_error *err) {
     return RY_OK;
 }
 
-static const char *const kernel_names[] = {"cubic",       "quintic", "wendland_c2",
-                                           "wendland_c4", "lucy",    "gaussian", NULL};
+static const char *const kernel_names[] = {"cubic", "quintic",  "wendland_c2", "wendland_c4",
+                                           "lucy",  "gaussian", NULL};
 
 static ry_status read_domain(ry_sim *sim, ry_case *c, ry_error *err) {
     ry_box *b = &sim->box;
@@ -101,11 +101,16 @@ static ry_status read_domain(ry_sim *sim, ry_case *c, ry_error *err) {
     for (size_t i = 0; i < ps->n; ++i)
         for (int d = 0; d < sim->dim; ++d) {
             double x = ps->f[RY_F_X + d][i];
-            RY_CHECK(err, x >= b->lo[d] && x < b->hi[d], RY_ERR_INPUT,
-                     "%s: key 'domain': particle %lld of body at (%g, %g%s) lies outside the "
-                     "domain",
-                     ry_case_where(c, "domain", where, sizeof where), (long long)ps->id[i],
-                     ps->f[RY_F_X][i], ps->f[RY_F_Y][i], sim->dim > 2 ? ", ..." : "");
+            RY_CHECK(
+                err,
+                x >= b->lo[d] &&
+                        x<b->hi[d], RY_ERR_INPUT,
+                          "%s: key 'domain': particle %lld of body at (%g, %g%s) lies outside the "
+                          "domain",
+                          ry_case_where(c, "domain", where, sizeof where), (long long)ps->id[i],
+                          ps->f[RY_F_X][i], ps->f[RY_F_Y][i], sim->dim> 2
+                    ? ", ..."
+                    : "");
         }
     return RY_OK;
 }
@@ -168,11 +173,11 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(ry_case_positive(c, "spacing", NULL, &sim->dx, err));
 
     int kt;
-    double hdx = 1.3;
+    double hdx = 1.4;
     RY_TRY(ry_case_choice(c, "kernel.type", "wendland_c2", kernel_names, &kt, err));
     RY_TRY(ry_case_double(c, "kernel.h_over_dx", &hdx, 0.5, 4.0, &sim->h_over_dx, err));
-    RY_TRY(ry_kernel_init(&sim->kernel, (ry_kernel_type)kt, sim->dim, sim->h_over_dx * sim->dx,
-                          err));
+    RY_TRY(
+        ry_kernel_init(&sim->kernel, (ry_kernel_type)kt, sim->dim, sim->h_over_dx * sim->dx, err));
 
     double zero[3] = {0, 0, 0};
     RY_TRY(ry_case_vector(c, "gravity", zero, sim->dim, sim->gravity, err));
@@ -286,8 +291,7 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     }
     sim->searches++;
     sim->nl_radius = radius;
-    for (int d = 0; d < sim->dim; ++d)
-        memcpy(ps->f[sim->f_xref + d], x[d], ps->n * sizeof(double));
+    for (int d = 0; d < sim->dim; ++d) memcpy(ps->f[sim->f_xref + d], x[d], ps->n * sizeof(double));
     return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err);
 }
 
@@ -312,8 +316,10 @@ ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
     for (size_t i = 0; i < ps->n; ++i) {
         const char *w = NULL;
         for (int d = 0; d < sim->dim && !w; ++d) {
-            if (!isfinite(ps->f[RY_F_X + d][i])) w = "position is not finite";
-            else if (!isfinite(ps->f[RY_F_VX + d][i])) w = "velocity is not finite";
+            if (!isfinite(ps->f[RY_F_X + d][i]))
+                w = "position is not finite";
+            else if (!isfinite(ps->f[RY_F_VX + d][i]))
+                w = "velocity is not finite";
         }
         if (!w && !isfinite(ps->f[RY_F_P][i])) w = "pressure is not finite";
         if (!w && !(ps->f[RY_F_RHO][i] > 0 && isfinite(ps->f[RY_F_RHO][i])))
@@ -332,8 +338,7 @@ ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
                             "particle id %lld (%s) at (%g, %g, %g): %s",
                             sim->step, sim->t, bad, (long long)ps->id[first],
                             ry_kind_name((ry_kind)ps->kind[first]), ps->f[RY_F_X][first],
-                            ps->f[RY_F_Y][first], sim->dim > 2 ? ps->f[RY_F_Z][first] : 0.0,
-                            what);
+                            ps->f[RY_F_Y][first], sim->dim > 2 ? ps->f[RY_F_Z][first] : 0.0, what);
     }
     return RY_OK;
 }

@@ -45,28 +45,42 @@ void ry_error_clear(ry_error *err) {
 
 const char *ry_status_name(ry_status code) {
     switch (code) {
-    case RY_OK: return "ok";
-    case RY_ERR_NOMEM: return "out of memory";
-    case RY_ERR_INPUT: return "input error";
-    case RY_ERR_IO: return "i/o error";
-    case RY_ERR_RANGE: return "value out of range";
-    case RY_ERR_UNSTABLE: return "simulation unstable";
-    case RY_ERR_INTERRUPTED: return "interrupted";
-    case RY_ERR_INTERNAL: return "internal error";
+    case RY_OK:
+        return "ok";
+    case RY_ERR_NOMEM:
+        return "out of memory";
+    case RY_ERR_INPUT:
+        return "input error";
+    case RY_ERR_IO:
+        return "i/o error";
+    case RY_ERR_RANGE:
+        return "value out of range";
+    case RY_ERR_UNSTABLE:
+        return "simulation unstable";
+    case RY_ERR_INTERRUPTED:
+        return "interrupted";
+    case RY_ERR_INTERNAL:
+        return "internal error";
     }
     return "unknown error";
 }
 
 int ry_status_exit_code(ry_status code) {
     switch (code) {
-    case RY_OK: return 0;
+    case RY_OK:
+        return 0;
     case RY_ERR_INPUT:
-    case RY_ERR_RANGE: return 2;
-    case RY_ERR_IO: return 3;
-    case RY_ERR_UNSTABLE: return 4;
-    case RY_ERR_INTERRUPTED: return 130;
+    case RY_ERR_RANGE:
+        return 2;
+    case RY_ERR_IO:
+        return 3;
+    case RY_ERR_UNSTABLE:
+        return 4;
+    case RY_ERR_INTERRUPTED:
+        return 130;
     case RY_ERR_NOMEM:
-    case RY_ERR_INTERNAL: return 1;
+    case RY_ERR_INTERNAL:
+        return 1;
     }
     return 1;
 }

@@ -12,7 +12,7 @@ typedef struct writer {
     int n, cap;
     char **files;
     double *times;
-    char *csv;        /* series.csv contents so far */
+    char *csv; /* series.csv contents so far */
     size_t csv_len, csv_cap;
 } writer;
 

@@ -24,8 +24,8 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
     RY_TRY(ry_case_choice(c, key(k, sizeof k, i, "kind"), type == BODY_TANK ? "wall" : "fluid",
                           kind_names, &st.kind, err));
     if (nmat > 0) {
-        RY_TRY(ry_case_choice(c, key(k, sizeof k, i, "material"), material_names[0],
-                              material_names, &st.material, err));
+        RY_TRY(ry_case_choice(c, key(k, sizeof k, i, "material"), material_names[0], material_names,
+                              &st.material, err));
     }
     double zero[3] = {0, 0, 0};
     RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "velocity"), zero, dim, st.velocity, err));
@@ -85,7 +85,8 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
                          err);
         break;
     }
-    default: return ry_error_set(err, RY_ERR_INTERNAL, "unhandled body type %d", type);
+    default:
+        return ry_error_set(err, RY_ERR_INTERNAL, "unhandled body type %d", type);
     }
     snprintf(k, sizeof k, "bodies[%zu]", i);
     if (s != RY_OK) {

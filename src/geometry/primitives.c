@@ -100,9 +100,9 @@ static int inside_cylinder(const double *p, const void *ctx) {
     return r2 <= c->r2 && r2 >= c->ri2;
 }
 
-ry_status ry_fill_cylinder(ry_particles *ps, const double *base, const double *axis,
-                           double length, double radius, double inner_radius, double dx,
-                           const ry_body_style *st, size_t *added, ry_error *err) {
+ry_status ry_fill_cylinder(ry_particles *ps, const double *base, const double *axis, double length,
+                           double radius, double inner_radius, double dx, const ry_body_style *st,
+                           size_t *added, ry_error *err) {
     RY_CHECK(err, ps->dim == 3, RY_ERR_INPUT, "cylinder: only in 3D (use a box in 2D)");
     RY_CHECK(err, radius > 0 && length > 0, RY_ERR_INPUT,
              "cylinder: radius and length must be > 0");
@@ -145,8 +145,8 @@ static int inside_tank_wall(const double *p, const void *ctx) {
 }
 
 ry_status ry_fill_tank(ry_particles *ps, const double *lo, const double *hi, int layers,
-                       int open_top, const double *lid_velocity, double dx,
-                       const ry_body_style *st, size_t *added, ry_error *err) {
+                       int open_top, const double *lid_velocity, double dx, const ry_body_style *st,
+                       size_t *added, ry_error *err) {
     RY_CHECK(err, layers >= 1, RY_ERR_INPUT, "tank: layers must be >= 1");
     tank_ctx t = {.dim = ps->dim, .open_top = open_top};
     double olo[3] = {0, 0, 0};

@@ -15,17 +15,20 @@ typedef struct vtk_array {
     /* Source: either component arrays of doubles, or a typed array. */
     const double *comp[3];
     const void *data;
-    int iota;        /* 1: 0..n-1 (connectivity), 2: 1..n (offsets) */
+    int iota; /* 1: 0..n-1 (connectivity), 2: 1..n (offsets) */
 } vtk_array;
 
 static const char *type_name(vtk_type t) {
     return t == T_F64 ? "Float64" : t == T_I64 ? "Int64" : "UInt8";
 }
-static size_t type_size(vtk_type t) { return t == T_U8 ? 1 : 8; }
+static size_t type_size(vtk_type t) {
+    return t == T_U8 ? 1 : 8;
+}
 
 static void header_array(FILE *fp, const vtk_array *a, uint64_t *offset, size_t n) {
-    fprintf(fp, "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "
-                "format=\"appended\" offset=\"%llu\"/>\n",
+    fprintf(fp,
+            "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "
+            "format=\"appended\" offset=\"%llu\"/>\n",
             type_name(a->type), a->name, a->ncomp, (unsigned long long)*offset);
     *offset += sizeof(uint64_t) + (uint64_t)n * a->ncomp * type_size(a->type);
 }
@@ -63,13 +66,19 @@ ry_status ry_vtk_write_particles(const char *path, const ry_particles *ps, doubl
     size_t n = ps->n;
     const int dim = ps->dim;
     enum { MAX_ARRAYS = 256 };
-    vtk_array pts = {"Points", T_F64, 3, {ps->f[RY_F_X], dim > 1 ? ps->f[RY_F_Y] : NULL,
-                                          dim > 2 ? ps->f[RY_F_Z] : NULL}, NULL, 0};
+    vtk_array pts = {
+        "Points", T_F64,
+        3,        {ps->f[RY_F_X], dim > 1 ? ps->f[RY_F_Y] : NULL, dim > 2 ? ps->f[RY_F_Z] : NULL},
+        NULL,     0};
     vtk_array pd[MAX_ARRAYS];
     int npd = 0;
-    pd[npd++] = (vtk_array){"velocity", T_F64, 3,
-                            {ps->f[RY_F_VX], dim > 1 ? ps->f[RY_F_VY] : NULL,
-                             dim > 2 ? ps->f[RY_F_VZ] : NULL}, NULL, 0};
+    pd[npd++] = (vtk_array){
+        "velocity",
+        T_F64,
+        3,
+        {ps->f[RY_F_VX], dim > 1 ? ps->f[RY_F_VY] : NULL, dim > 2 ? ps->f[RY_F_VZ] : NULL},
+        NULL,
+        0};
     pd[npd++] = (vtk_array){"pressure", T_F64, 1, {ps->f[RY_F_P]}, NULL, 0};
     pd[npd++] = (vtk_array){"density", T_F64, 1, {ps->f[RY_F_RHO]}, NULL, 0};
     pd[npd++] = (vtk_array){"mass", T_F64, 1, {ps->f[RY_F_MASS]}, NULL, 0};
@@ -88,8 +97,9 @@ ry_status ry_vtk_write_particles(const char *path, const ry_particles *ps, doubl
     uint64_t off = 0;
     fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
                 "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <PolyData>\n");
-    fprintf(fp, "    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TimeValue\" "
-                "NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n    </FieldData>\n",
+    fprintf(fp,
+            "    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TimeValue\" "
+            "NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n    </FieldData>\n",
             time);
     fprintf(fp, "    <Piece NumberOfPoints=\"%zu\" NumberOfVerts=\"%zu\">\n", n, n);
     fprintf(fp, "      <PointData Scalars=\"pressure\" Vectors=\"velocity\">\n");
@@ -99,7 +109,8 @@ ry_status ry_vtk_write_particles(const char *path, const ry_particles *ps, doubl
     fprintf(fp, "      </Points>\n      <Verts>\n");
     header_array(fp, &conn, &off, n);
     header_array(fp, &offs, &off, n);
-    fprintf(fp, "      </Verts>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n_");
+    fprintf(fp,
+            "      </Verts>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n_");
     size_t chunk = 4096;
     void *buf = malloc(chunk * 3 * sizeof(double));
     int bad = buf == NULL;

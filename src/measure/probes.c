@@ -137,4 +137,6 @@ static const ry_probe p_in_wall = {"in_wall", "fluid particles closer than dx/2 
 static const ry_probe *const all_probes[] = {&p_mass,  &p_kin,     &p_vmax, &p_out,
                                              &p_front, &p_in_wall, NULL};
 
-const ry_probe *const *ry_probes(void) { return all_probes; }
+const ry_probe *const *ry_probes(void) {
+    return all_probes;
+}

@@ -7,8 +7,8 @@
 #include "ryushi/atomic_file.h"
 #include "ryushi/validate.h"
 
-ry_status ry_run_case_file(const char *path, int nset, const char *const *sets,
-                           const char *out_dir, ry_sim *sim, ry_run_stats *stats, ry_error *err) {
+ry_status ry_run_case_file(const char *path, int nset, const char *const *sets, const char *out_dir,
+                           ry_sim *sim, ry_run_stats *stats, ry_error *err) {
     ry_case *c = NULL;
     memset(sim, 0, sizeof *sim);
     ry_status st = ry_case_load(&c, path, err);

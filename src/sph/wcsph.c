@@ -13,6 +13,10 @@
  *  walls      dummy particles with pressure extrapolated from the fluid, Adami, Hu & Adams
  *             (2012), J. Comput. Phys. 231: 7057, eq. 27-28; no-slip through the extrapolated
  *             ghost velocity 2 v_w - v~ (eq. 22-23), or free-slip.
+ *  transport velocity (option, confined flows): Adami, Hu & Adams (2013), J. Comput. Phys.
+ *             241: 292, eq. 8-13: particles move with v~ = v + dt (-p_b/m_i) sum_j (V_i^2 + V_j^2)
+ *             grad W_ij, momentum with the inter-particle averaged pressure and viscosity and the
+ *             extra stress A = rho v (v~ - v); density from the number density.
  *  time       kick-drift-kick leapfrog, second order, one force evaluation per step; forces
  *             are evaluated with the predicted velocity and density (v_n + dt a_n).
  *             dt = min(CFL h / (c0 + |v|max), 0.25 sqrt(h / |a|max), 0.125 h^2 / nu). */
@@ -35,8 +39,11 @@ typedef struct wcsph {
     int have_forces;
     int f_vh[3], f_rhoh, f_eh, f_hh, f_vg[3];
     int f_prho2, f_vol, f_mu, f_cs, f_isfluid, f_visc; /* per-evaluation scratch */
-    double *Bm;    /* Tait coefficient per material */
-    double *rho0m; /* reference density per material */
+    int tvf;                                           /* transport-velocity formulation */
+    double p_tvf;                                      /* its background pressure p_b */
+    int f_vt[3], f_abg[3]; /* transport velocity, background-pressure acceleration */
+    double *Bm;            /* Tait coefficient per material */
+    double *rho0m;         /* reference density per material */
 } wcsph;
 
 /* Density in hydrostatic equilibrium under gravity, free surface half a spacing above the
@@ -58,19 +65,30 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     RY_TRY(ry_case_choice(c, "scheme.eos", "tait", eos_names, &w->eos, err));
     RY_TRY(ry_case_positive(c, "scheme.sound_speed", NULL, &w->c0, err));
     RY_TRY(ry_case_double(c, "scheme.gamma", &seven, 1.0, 10.0, &w->gamma, err));
-    RY_TRY(ry_case_double(c, "scheme.background_pressure", &zero, 0.0, INFINITY,
-                          &w->p_background, err));
-    RY_TRY(ry_case_double(c, "scheme.artificial_viscosity.alpha", &alpha, 0.0, 10.0, &w->alpha,
+    RY_TRY(ry_case_double(c, "scheme.background_pressure", &zero, 0.0, INFINITY, &w->p_background,
                           err));
+    RY_TRY(
+        ry_case_double(c, "scheme.artificial_viscosity.alpha", &alpha, 0.0, 10.0, &w->alpha, err));
     RY_TRY(ry_case_double(c, "scheme.artificial_viscosity.beta", &zero, 0.0, 10.0, &w->beta, err));
     RY_TRY(ry_case_bool(c, "scheme.laminar_viscosity", &yes, &w->laminar, err));
-    RY_TRY(ry_case_choice(c, "scheme.density_diffusion", "none", diffusion_names, &w->diffusion,
-                          err));
+    RY_TRY(
+        ry_case_choice(c, "scheme.density_diffusion", "none", diffusion_names, &w->diffusion, err));
     RY_TRY(ry_case_double(c, "scheme.delta", &delta, 0.0, 1.0, &w->delta, err));
     RY_TRY(ry_case_bool(c, "scheme.energy", &no, &w->energy, err));
     RY_TRY(ry_case_bool(c, "scheme.variable_h", &no, &w->variable_h, err));
     RY_TRY(ry_case_choice(c, "scheme.wall", "no_slip", wall_names, &w->wall, err));
+    RY_TRY(ry_case_bool(c, "scheme.transport_velocity", &no, &w->tvf, err));
     char where[256];
+    if (w->tvf) {
+        RY_CHECK(err, w->density == DENS_SUMMATION && !w->variable_h && !w->energy, RY_ERR_INPUT,
+                 "%s: key 'scheme.transport_velocity': needs scheme.density: summation (and no "
+                 "variable_h or energy)",
+                 ry_case_where(c, "scheme.transport_velocity", where, sizeof where));
+        double pb_def = 0;
+        for (int m = 0; m < sim->nmat; ++m)
+            pb_def = fmax(pb_def, sim->mat[m].density * w->c0 * w->c0);
+        RY_TRY(ry_case_positive(c, "scheme.transport_pressure", &pb_def, &w->p_tvf, err));
+    }
     if (w->variable_h)
         RY_CHECK(err, w->density == DENS_CONTINUITY, RY_ERR_INPUT,
                  "%s: key 'scheme.variable_h': needs scheme.density: continuity",
@@ -87,8 +105,17 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         RY_TRY(ry_particles_add_field(ps, vh[d], "m/s", d, RY_FIELD_STATE, &w->f_vh[d], err));
         RY_TRY(ry_particles_add_field(ps, vg[d], "m/s", d, 0, &w->f_vg[d], err));
     }
-    RY_TRY(ry_particles_add_field(ps, "density_half", "kg/m^3", -1, RY_FIELD_STATE, &w->f_rhoh,
-                                  err));
+    if (w->tvf) {
+        static const char *const vt[3] = {"vtransport_x", "vtransport_y", "vtransport_z"};
+        static const char *const ab[3] = {"abg_x", "abg_y", "abg_z"};
+        for (int d = 0; d < 3; ++d) {
+            RY_TRY(ry_particles_add_field(ps, vt[d], "m/s", d, RY_FIELD_STATE, &w->f_vt[d], err));
+            RY_TRY(
+                ry_particles_add_field(ps, ab[d], "m/s^2", d, RY_FIELD_STATE, &w->f_abg[d], err));
+        }
+    }
+    RY_TRY(
+        ry_particles_add_field(ps, "density_half", "kg/m^3", -1, RY_FIELD_STATE, &w->f_rhoh, err));
     RY_TRY(ry_particles_add_field(ps, "energy_half", "J/kg", -1, RY_FIELD_STATE, &w->f_eh, err));
     RY_TRY(ry_particles_add_field(ps, "h_half", "m", -1, RY_FIELD_STATE, &w->f_hh, err));
     RY_TRY(ry_particles_add_field(ps, "p_over_rho2", "m^3/kg", -1, 0, &w->f_prho2, err));
@@ -105,6 +132,9 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         w->rho0m[m] = sim->mat[m].density;
         w->Bm[m] = w->c0 * w->c0 * w->rho0m[m] / w->gamma;
     }
+    if (w->tvf)
+        for (size_t i = 0; i < ps->n; ++i)
+            for (int d = 0; d < sim->dim; ++d) ps->f[w->f_vt[d]][i] = ps->f[RY_F_VX + d][i];
     /* Initial pressure from the density (zero for a fluid at rest at rho0); energy for gases. */
     for (size_t i = 0; i < ps->n; ++i) {
         ps->f[RY_F_E][i] = 0;
@@ -132,9 +162,12 @@ static void wcsph_free(void *state) {
 static inline double eos_pressure(const wcsph *w, int mat, double rho, double e) {
     double rho0 = w->rho0m[mat];
     switch (w->eos) {
-    case EOS_TAIT: return w->Bm[mat] * (pow(rho / rho0, w->gamma) - 1.0) + w->p_background;
-    case EOS_LINEAR: return w->c0 * w->c0 * (rho - rho0) + w->p_background;
-    default: return (w->gamma - 1.0) * rho * e;
+    case EOS_TAIT:
+        return w->Bm[mat] * (pow(rho / rho0, w->gamma) - 1.0) + w->p_background;
+    case EOS_LINEAR:
+        return w->c0 * w->c0 * (rho - rho0) + w->p_background;
+    default:
+        return (w->gamma - 1.0) * rho * e;
     }
 }
 
@@ -146,8 +179,10 @@ static inline double eos_density(const wcsph *w, int mat, double p) {
         double s = 1.0 + q / w->Bm[mat];
         return rho0 * pow(s > 1e-3 ? s : 1e-3, 1.0 / w->gamma);
     }
-    case EOS_LINEAR: return fmax(rho0 + q / (w->c0 * w->c0), 1e-3 * rho0);
-    default: return rho0;
+    case EOS_LINEAR:
+        return fmax(rho0 + q / (w->c0 * w->c0), 1e-3 * rho0);
+    default:
+        return rho0;
     }
 }
 
@@ -210,6 +245,7 @@ static void density_summation(ry_sim *sim, const wcsph *w) {
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
+        const int numden = w->tvf; /* rho_i = m_i sum_j W_ij (Adami et al. 2013) */
         double s = m[i] * (w->variable_h ? w_h(k, 0.0, hh[i]) : ry_kernel_w(k, 0.0));
         for (size_t q = off[i]; q < off[i + 1]; ++q) {
             uint32_t j = nb[q];
@@ -219,7 +255,8 @@ static void density_summation(ry_sim *sim, const wcsph *w) {
             for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
             if (r2 >= rad2) continue;
             double r = sqrt(r2);
-            s += m[j] * (w->variable_h ? w_h(k, r, 0.5 * (hh[i] + hh[j])) : ry_kernel_w(k, r));
+            s += (numden ? m[i] : m[j]) *
+                 (w->variable_h ? w_h(k, r, 0.5 * (hh[i] + hh[j])) : ry_kernel_w(k, r));
         }
         rho[i] = s;
     }
@@ -416,8 +453,104 @@ fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, 
     res->vmax2 = vmax2;
 }
 
+/* Transport-velocity formulation (Adami, Hu & Adams 2013, eq. 8 and 13): pressure with the
+ * density-weighted inter-particle average, the extra stress A = rho v (v~ - v), the viscous
+ * term with the inter-particle averaged viscosity, and the background-pressure acceleration
+ * that moves particles with v~. V_i = m_i / rho_i. */
+static inline __attribute__((always_inline)) void fluid_pass_tvf(ry_sim *sim, const wcsph *w,
+                                                                 const int dim, force_out *res) {
+    ry_particles *ps = &sim->ps;
+    const ry_kernel *k = &sim->kernel;
+    const size_t n = ps->n;
+    const double *x[3], *v[3], *vg[3], *vt[3];
+    double *a[3], *ab[3];
+    ry_particles_coords(ps, x);
+    for (int d = 0; d < 3; ++d) {
+        v[d] = ps->f[RY_F_VX + d];
+        vg[d] = ps->f[w->f_vg[d]];
+        vt[d] = ps->f[w->f_vt[d]];
+        a[d] = ps->f[RY_F_AX + d];
+        ab[d] = ps->f[w->f_abg[d]];
+    }
+    const double *restrict m = ps->f[RY_F_MASS];
+    const double *restrict rho = ps->f[RY_F_RHO];
+    const double *restrict p = ps->f[RY_F_P];
+    const double *restrict vol = ps->f[w->f_vol];
+    const double *restrict mu = ps->f[w->f_mu];
+    const double *restrict isfl = ps->f[w->f_isfluid];
+    const double *restrict vis = ps->f[w->f_visc];
+    const uint8_t *restrict kind = ps->kind;
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const double rad2 = sim->nl_radius * sim->nl_radius;
+    const double pb = w->p_tvf;
+    const double *g = sim->gravity;
+    const int periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
+    double amax2 = 0, vmax2 = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)
+    for (size_t i = 0; i < n; ++i) {
+        if (kind[i] != RY_KIND_FLUID) continue;
+        const double rhoi = rho[i], pi = p[i], mui = mu[i], vi2 = vol[i] * vol[i];
+        double ai[3] = {0, 0, 0}, bi[3] = {0, 0, 0}, Ai[3], v2 = 0;
+        /* A_i = rho_i v_i (v~_i - v_i), a tensor; A_i . grad W = rho_i v_i ((v~_i - v_i).gradW) */
+        for (int d = 0; d < dim; ++d) {
+            Ai[d] = vt[d][i] - v[d][i];
+            v2 += v[d][i] * v[d][i];
+        }
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            double dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
+            if (periodic) ry_box_min_image(&sim->box, dx);
+            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+            if (r2 >= rad2 || r2 <= 0) continue;
+            const double r = sqrt(r2);
+            const double fw = ry_kernel_dwdr(k, r) / r; /* grad W = fw dx */
+            const double rhoj = rho[j], vv = vi2 + vol[j] * vol[j];
+            const double pij = (rhoj * pi + rhoi * p[j]) / (rhoi + rhoj);
+            const int fj = isfl[j] > 0.0;
+            const double muj = fj ? mu[j] : mui;
+            const double etaij = (mui + muj) > 0 ? 2.0 * mui * muj / (mui + muj) : 0.0;
+            /* (A_i + A_j)/2 . grad W; walls carry no extra stress. */
+            double adi = 0, adj = 0;
+            for (int d = 0; d < dim; ++d) {
+                adi += Ai[d] * dx[d];
+                if (fj) adj += (vt[d][j] - v[d][j]) * dx[d];
+            }
+            adi *= fw;
+            adj *= fw;
+            for (int d = 0; d < dim; ++d) {
+                const double vij = v[d][i] - vg[d][j];
+                double f = -pij * fw * dx[d];
+                f += 0.5 * (rhoi * v[d][i] * adi + (fj ? rhoj * v[d][j] * adj : 0.0));
+                f += vis[j] * etaij * vij * fw; /* eta_ij v_ij (1/r) dW/dr */
+                ai[d] += vv * f;
+                bi[d] += vv * fw * dx[d];
+            }
+        }
+        double a2 = 0;
+        for (int d = 0; d < dim; ++d) {
+            ai[d] = ai[d] / m[i] + g[d];
+            a[d][i] = ai[d];
+            ab[d][i] = -pb / m[i] * bi[d];
+            a2 += ai[d] * ai[d];
+        }
+        amax2 = fmax(amax2, a2);
+        vmax2 = fmax(vmax2, v2);
+    }
+    res->amax2 = amax2;
+    res->vmax2 = vmax2;
+}
+
 /* Picks the specialised pair loop. */
 static void fluid_forces(ry_sim *sim, const wcsph *w, force_out *res) {
+    if (w->tvf) {
+        if (sim->dim == 2)
+            fluid_pass_tvf(sim, w, 2, res);
+        else
+            fluid_pass_tvf(sim, w, 3, res);
+        return;
+    }
 #define RY_WCSPH_CASE_(kt)                                                                         \
     case kt:                                                                                       \
         if (sim->dim == 2)                                                                         \
@@ -432,7 +565,8 @@ static void fluid_forces(ry_sim *sim, const wcsph *w, force_out *res) {
         RY_WCSPH_CASE_(RY_KERNEL_WENDLAND_C4)
         RY_WCSPH_CASE_(RY_KERNEL_LUCY)
         RY_WCSPH_CASE_(RY_KERNEL_GAUSSIAN)
-    default: break;
+    default:
+        break;
     }
 #undef RY_WCSPH_CASE_
 }
@@ -496,7 +630,14 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         for (int d = 0; d < dim; ++d) {
             double vh = ps->f[RY_F_VX + d][i] + 0.5 * dt * ps->f[RY_F_AX + d][i];
             ps->f[w->f_vh[d]][i] = vh;
-            ps->f[RY_F_X + d][i] += dt * vh;
+            if (w->tvf) {
+                /* Particles move with the transport velocity (Adami et al. 2013, eq. 13). */
+                double vt = vh + 0.5 * dt * ps->f[w->f_abg[d]][i];
+                ps->f[w->f_vt[d]][i] = vt;
+                ps->f[RY_F_X + d][i] += dt * vt;
+            } else {
+                ps->f[RY_F_X + d][i] += dt * vh;
+            }
             ps->f[RY_F_VX + d][i] = vh + 0.5 * dt * ps->f[RY_F_AX + d][i];
         }
         if (cont) {
@@ -534,5 +675,6 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
 }
 
 const ry_scheme_type ry_scheme_wcsph = {
-    "wcsph", "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog)",
-    wcsph_init, wcsph_dt, wcsph_step, wcsph_free};
+    "wcsph",    "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog)",
+    wcsph_init, wcsph_dt,
+    wcsph_step, wcsph_free};

@@ -60,8 +60,7 @@ static void test_extra_field_follows(void **state) {
     int fid, again;
     assert_int_equal(ry_particles_init(&ps, 2, &err), RY_OK);
     fill(&ps, 100);
-    assert_int_equal(ry_particles_add_field(&ps, "stress_xx", "Pa", -1, RY_FIELD_STATE, &fid,
-                                            &err),
+    assert_int_equal(ry_particles_add_field(&ps, "stress_xx", "Pa", -1, RY_FIELD_STATE, &fid, &err),
                      RY_OK);
     assert_int_equal(ry_particles_add_field(&ps, "stress_xx", "Pa", -1, 0, &again, &err), RY_OK);
     assert_int_equal(fid, again);
@@ -124,10 +123,8 @@ static void test_kind_names(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_dimension_fields),
-        cmocka_unit_test(test_growth_keeps_data),
-        cmocka_unit_test(test_extra_field_follows),
-        cmocka_unit_test(test_remove_keeps_order),
+        cmocka_unit_test(test_dimension_fields),    cmocka_unit_test(test_growth_keeps_data),
+        cmocka_unit_test(test_extra_field_follows), cmocka_unit_test(test_remove_keeps_order),
         cmocka_unit_test(test_kind_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
