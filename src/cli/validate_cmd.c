@@ -214,12 +214,14 @@ static int validate_cavity(vctx *v) {
         if (ry_cavity_centrelines(&sim, 1.0, 1.0, &gu, &gv, odir, &ru, &rv, &err) != RY_OK)
             report(v, &err);
         ry_sim_free(&sim);
-        ry_table_free(&s);
         printf("  %3dx%-6d %10zu %10.4f %10.4f %8.1f\n", N[r], N[r], np, ru, rv, ws);
         char what[128];
         snprintf(what, sizeof what, "%dx%d: RMS of (u - u_Ghia)/U and (v - v_Ghia)/U <= 0.02", N[r],
                  N[r]);
         verdict(v, what, ru <= 0.02 && rv <= 0.02);
+        snprintf(what, sizeof what, "%dx%d: no fluid particle outside or in a wall", N[r], N[r]);
+        verdict(v, what, ry_column_max(&s, "outside") == 0 && ry_column_max(&s, "in_wall") == 0);
+        ry_table_free(&s);
         char label[64], path[4200];
         snprintf(label, sizeof label, "ryushi %dx%d", N[r], N[r]);
         ry_table cu, cv;
@@ -267,6 +269,8 @@ static int validate_cavity(vctx *v) {
                np, ws, e0, e1, 100 * change);
         verdict(v, "Re = 1 cavity reaches a steady state (mean energy change < 3 %)",
                 change < 0.03);
+        verdict(v, "Re = 1 cavity: no fluid particle outside or in a wall",
+                ry_column_max(&s, "outside") == 0 && ry_column_max(&s, "in_wall") == 0);
         ry_table_free(&s);
     } else {
         report(v, &err);

@@ -97,26 +97,27 @@ static ry_status probe_front_x(const ry_sim *sim, double *v, ry_error *err) {
     return RY_OK;
 }
 
-/* Fluid particles that have entered a wall: closer than half a spacing to a wall particle
- * (the wall lattice leaves half a spacing between its outer layer and the fluid). Uses the
- * neighbour list of the last step. */
+/* Fluid particles inside a wall: inside the lattice cell (a square or cube of side dx centred
+ * on the particle) of some wall particle, i.e. within dx/2 of it in every direction. The wall
+ * surface lies half a spacing beyond the outer wall layer, so this counts exactly the fluid
+ * particles that crossed it. Uses the neighbour list of the last step. */
 static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
     const ry_particles *ps = &sim->ps;
     *v = 0;
     if (!sim->nl.offset || sim->nl.n != ps->n) return RY_OK;
-    const double lim2 = 0.25 * sim->dx * sim->dx * (1 - 1e-9);
+    const double lim = 0.5 * sim->dx * (1 - 1e-9);
     size_t count = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
             uint32_t j = sim->nl.j[q];
             if (ps->kind[j] != RY_KIND_WALL) continue;
-            double dx[3] = {0, 0, 0}, r2 = 0;
+            double dx[3] = {0, 0, 0}, dmax = 0;
             for (int d = 0; d < sim->dim; ++d) dx[d] = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
             ry_box_min_image(&sim->box, dx);
-            for (int d = 0; d < sim->dim; ++d) r2 += dx[d] * dx[d];
-            if (r2 < lim2) {
+            for (int d = 0; d < sim->dim; ++d) dmax = fmax(dmax, fabs(dx[d]));
+            if (dmax < lim) {
                 ++count;
                 break;
             }
@@ -132,8 +133,9 @@ static const ry_probe p_vmax = {"max_speed", "largest fluid speed [m/s]", probe_
 static const ry_probe p_out = {"outside", "particles outside the domain", probe_outside};
 static const ry_probe p_front = {"front_x", "surge front position [m] (leading edge on the floor)",
                                  probe_front_x};
-static const ry_probe p_in_wall = {"in_wall", "fluid particles closer than dx/2 to a wall particle",
-                                   probe_in_wall};
+static const ry_probe p_in_wall = {
+    "in_wall", "fluid particles inside a wall (within dx/2 of a wall particle in every direction)",
+    probe_in_wall};
 static const ry_probe *const all_probes[] = {&p_mass,  &p_kin,     &p_vmax, &p_out,
                                              &p_front, &p_in_wall, NULL};
 

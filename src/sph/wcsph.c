@@ -17,6 +17,10 @@
  *             241: 292, eq. 8-13: particles move with v~ = v + dt (-p_b/m_i) sum_j (V_i^2 + V_j^2)
  *             grad W_ij, momentum with the inter-particle averaged pressure and viscosity and the
  *             extra stress A = rho v (v~ - v); density from the number density.
+ *  wall repulsion (safety net): fluid particles that come closer than r0 = 0.75 dx to a wall
+ *             particle (which only happens where the fluid is too sparse to build up wall
+ *             pressure, e.g. a film sliding down a wall) are pushed back with the force of
+ *             Monaghan (1994), D ((r0/r)^12 - (r0/r)^4) x_ij / r^2, D = 0.01 c0^2.
  *  time       kick-drift-kick leapfrog, second order, one force evaluation per step; forces
  *             are evaluated with the predicted velocity and density (v_n + dt a_n).
  *             dt = min(CFL h / (c0 + |v|max), 0.25 sqrt(h / |a|max), 0.125 h^2 / nu). */
@@ -39,6 +43,8 @@ typedef struct wcsph {
     int have_forces;
     int f_vh[3], f_rhoh, f_eh, f_hh, f_vg[3];
     int f_prho2, f_vol, f_mu, f_cs, f_isfluid, f_visc; /* per-evaluation scratch */
+    int repulse;                                       /* wall repulsion on */
+    double rep_r0, rep_d;                              /* its radius and strength */
     int tvf;                                           /* transport-velocity formulation */
     double p_tvf;                                      /* its background pressure p_b */
     int f_vt[3], f_abg[3]; /* transport velocity, background-pressure acceleration */
@@ -78,6 +84,11 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     RY_TRY(ry_case_bool(c, "scheme.variable_h", &no, &w->variable_h, err));
     RY_TRY(ry_case_choice(c, "scheme.wall", "no_slip", wall_names, &w->wall, err));
     RY_TRY(ry_case_bool(c, "scheme.transport_velocity", &no, &w->tvf, err));
+    RY_TRY(ry_case_bool(c, "scheme.wall_repulsion", &yes, &w->repulse, err));
+    double r0 = 0.75;
+    RY_TRY(ry_case_double(c, "scheme.wall_repulsion_radius", &r0, 0.1, 1.0, &w->rep_r0, err));
+    w->rep_r0 *= sim->dx;
+    w->rep_d = w->repulse ? 0.01 * w->c0 * w->c0 : 0.0;
     char where[256];
     if (w->tvf) {
         RY_CHECK(err, w->density == DENS_SUMMATION && !w->variable_h && !w->energy, RY_ERR_INPUT,
@@ -316,6 +327,15 @@ typedef struct force_out {
     double amax2, vmax2;
 } force_out;
 
+/* Monaghan (1994) wall repulsion per unit mass, divided by r^2 (multiplies x_ij); zero beyond
+ * r0. */
+static inline double wall_repulsion(double r2, double r0, double D) {
+    double q2 = r0 * r0 / r2;
+    if (q2 <= 1.0) return 0.0;
+    double q4 = q2 * q2, q12 = q4 * q4 * q4;
+    return D * (q12 - q4) / r2;
+}
+
 /* Per-particle quantities the pair loop reads (computed once per evaluation, so that the pair
  * loop has no divisions by rho and no branches on the kind of j). */
 static void prepare_pairs(ry_sim *sim, const wcsph *w) {
@@ -384,6 +404,7 @@ fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, 
     const double alpha = w->alpha, beta = w->beta;
     const int periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
     const double inv_c02 = 1.0 / (w->c0 * w->c0);
+    const double rep_r0 = w->rep_r0, rep_d = w->rep_d, rep_r02 = rep_d > 0 ? rep_r0 * rep_r0 : 0.0;
     const double *rho0m = w->rho0m;
     double amax2 = 0, vmax2 = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)
@@ -428,9 +449,12 @@ fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, 
             /* Morris et al. (1997) laminar viscosity (a wall takes the fluid's viscosity). */
             const double muj = isj > 0.0 ? mu[j] : mui;
             const double fv = vis[j] * volj * (mui + muj) * inv_rhoi * fw * r2 * ieta;
-            ax += fp * dx + fv * vx;
-            ay += fp * dy + fv * vy;
-            if (dim > 2) az += fp * dz + fv * vz;
+            /* Wall repulsion, the rare case of a fluid particle very close to a wall. */
+            const double fr =
+                (isj == 0.0 && r2 < rep_r02) ? wall_repulsion(r2, rep_r0, rep_d) : 0.0;
+            ax += fp * dx + fv * vx + fr * dx;
+            ay += fp * dy + fv * vy + fr * dy;
+            if (dim > 2) az += fp * dz + fv * vz + fr * dz;
             dr += volj * vdw * fw;
             double drj = rhoj - rhoi;
             if (fourtakas) drj += fh * (gx * dx + gy * dy + gz * dz);
@@ -519,9 +543,12 @@ static inline __attribute__((always_inline)) void fluid_pass_tvf(ry_sim *sim, co
             }
             adi *= fw;
             adj *= fw;
+            const double fr = (!fj && w->rep_d > 0 && r2 < w->rep_r0 * w->rep_r0)
+                                  ? wall_repulsion(r2, w->rep_r0, w->rep_d) * m[i] / vv
+                                  : 0.0;
             for (int d = 0; d < dim; ++d) {
                 const double vij = v[d][i] - vg[d][j];
-                double f = -pij * fw * dx[d];
+                double f = -pij * fw * dx[d] + fr * dx[d];
                 f += 0.5 * (rhoi * v[d][i] * adi + (fj ? rhoj * v[d][j] * adj : 0.0));
                 f += vis[j] * etaij * vij * fw; /* eta_ij v_ij (1/r) dW/dr */
                 ai[d] += vv * f;

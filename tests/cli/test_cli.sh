@@ -1,0 +1,77 @@
+#!/bin/sh
+# Command-line behaviour: help, version, errors with file:line:key and exit code 2, a short run
+# with its outputs, the summary line, and a clean stop on SIGINT.
+# usage: test_cli.sh RYUSHI SOURCE_DIR
+set -u
+RY=$1
+SRC=$2
+T=$(mktemp -d /tmp/ryushi_cli_XXXXXX)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { echo "FAIL: $*"; fail=$((fail + 1)); }
+
+# expect CODE PATTERN -- command...: exit code and a pattern in stdout+stderr
+expect() {
+    code=$1; pat=$2; shift 2
+    out=$("$@" 2>&1); rc=$?
+    if [ "$rc" -ne "$code" ]; then bad "'$*' exited $rc, expected $code: $out"; return; fi
+    if ! printf '%s' "$out" | grep -q -- "$pat"; then bad "'$*': no '$pat' in: $out"; return; fi
+    ok
+}
+
+expect 0 "usage:" "$RY" --help
+expect 0 "ryushi 0" "$RY" --version
+expect 2 "unknown command" "$RY" frobnicate
+expect 2 "a case file is required" "$RY" run
+expect 3 "cannot read" "$RY" run "$T/missing.yaml"
+
+cat > "$T/bad_key.yaml" <<'YAML'
+dimension: 2
+spacing: 0.01
+materials: [{name: water, density: 1000}]
+bodies: [{type: box, lo: [0, 0], hi: [0.1, 0.1]}]
+scheme: {name: static}
+time: {end: 0.1, cfll: 0.3}
+YAML
+expect 2 "bad_key.yaml:6: unknown key 'time.cfll'" "$RY" run "$T/bad_key.yaml" -o "$T/o1"
+
+sed 's/spacing: 0.01/spacing: -0.01/; s/cfll/cfl/' "$T/bad_key.yaml" > "$T/neg.yaml"
+expect 2 "neg.yaml:2: key 'spacing'" "$RY" run "$T/neg.yaml" -o "$T/o2"
+expect 2 "key 'spacing': expected a" "$RY" run "$T/neg.yaml" --set spacing=abc -o "$T/o2"
+expect 2 "key 'scheme.name'" "$RY" run "$T/neg.yaml" --set spacing=0.01 --set scheme.name=nope
+expect 2 "threads" "$RY" run "$T/neg.yaml" --threads 0
+
+# A short run of the seed dam break at 20x40: outputs and the summary line.
+"$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/run" --set spacing=0.0125 \
+    --set time.end=0.02 --set time.output_interval=0.01 > "$T/run.log" 2>&1
+rc=$?
+[ $rc -eq 0 ] && ok || bad "short run exited $rc: $(cat "$T/run.log")"
+for f in dam_break_seed.pvd dam_break_seed_00000.vtp dam_break_seed_00002.vtp series.csv \
+    case_resolved.yaml; do
+    [ -s "$T/run/$f" ] && ok || bad "missing output $f"
+done
+tail -n 1 "$T/run.log" | grep -q "^summary status=ok steps=[0-9]* particles=1340 .*wall_s=.*particle_steps_per_s=" \
+    && ok || bad "last line is not the summary: $(tail -n 1 "$T/run.log")"
+head -n 1 "$T/run/series.csv" | grep -q "^t," && ok || bad "series.csv does not start with t"
+ls "$T/run" | grep -q "tmp" && bad "temporary files left in the output" || ok
+# The resolved case runs again as it is and gives the same particles.
+"$RY" info "$T/run/case_resolved.yaml" | grep -q "particles *1340" && ok \
+    || bad "case_resolved.yaml does not reproduce the case"
+"$RY" info "$SRC/cases/dam_break_seed.yaml" | grep -q "bytes/particle" && ok || bad "info lacks bytes/particle"
+
+# SIGINT: a long run stops cleanly, writes its state and exits 130.
+"$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/int" --set spacing=0.0125 > "$T/int.log" 2>&1 &
+pid=$!
+sleep 2
+kill -INT $pid
+wait $pid
+rc=$?
+[ $rc -eq 130 ] && ok || bad "SIGINT run exited $rc: $(tail -n 3 "$T/int.log")"
+grep -q "interrupted" "$T/int.log" && ok || bad "no interruption message"
+[ -s "$T/int/series.csv" ] && [ -s "$T/int/dam_break_seed.pvd" ] && ok || bad "no output after SIGINT"
+ls "$T/int" | grep -q "tmp" && bad "temporary files left after SIGINT" || ok
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
