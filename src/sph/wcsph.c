@@ -43,10 +43,12 @@ typedef struct wcsph {
     int have_forces;
     int f_vh[3], f_rhoh, f_eh, f_hh, f_vg[3];
     int f_prho2, f_vol, f_mu, f_cs, f_isfluid, f_visc; /* per-evaluation scratch */
-    int repulse;                                       /* wall repulsion on */
-    double rep_r0, rep_d;                              /* its radius and strength */
-    int tvf;                                           /* transport-velocity formulation */
-    double p_tvf;                                      /* its background pressure p_b */
+    double *pack; /* PK_STRIDE doubles per particle, rebuilt each evaluation */
+    size_t pack_cap;
+    int repulse;           /* wall repulsion on */
+    double rep_r0, rep_d;  /* its radius and strength */
+    int tvf;               /* transport-velocity formulation */
+    double p_tvf;          /* its background pressure p_b */
     int f_vt[3], f_abg[3]; /* transport velocity, background-pressure acceleration */
     double *Bm;            /* Tait coefficient per material */
     double *rho0m;         /* reference density per material */
@@ -167,6 +169,7 @@ static void wcsph_free(void *state) {
     if (!w) return;
     free(w->Bm);
     free(w->rho0m);
+    free(w->pack);
     free(w);
 }
 
@@ -327,18 +330,41 @@ typedef struct force_out {
     double amax2, vmax2;
 } force_out;
 
-/* Monaghan (1994) wall repulsion per unit mass, divided by r^2 (multiplies x_ij); zero beyond
- * r0. */
-static inline double wall_repulsion(double r2, double r0, double D) {
-    double q2 = r0 * r0 / r2;
-    if (q2 <= 1.0) return 0.0;
-    double q4 = q2 * q2, q12 = q4 * q4 * q4;
-    return D * (q12 - q4) / r2;
+/* Per-particle record read by the pair loop: everything about j in two (2D) or three (3D)
+ * cache lines instead of one array per quantity. */
+enum {
+    PK_X,
+    PK_Y,
+    PK_Z, /* position */
+    PK_U,
+    PK_V,
+    PK_W, /* velocity (continuity uses the wall's own velocity) */
+    PK_UG,
+    PK_VG,
+    PK_WG, /* velocity seen by viscous terms (ghost velocity on no-slip walls) */
+    PK_RHO,
+    PK_PRHO2,
+    PK_VOL,
+    PK_MU,
+    PK_CS,
+    PK_MASS,
+    PK_FLUID,
+    PK_VISC,
+    PK_H,
+    PK_STRIDE = 24
+};
+
+/* Monaghan (1994) wall repulsion per unit mass, divided by r^2 (multiplies x_ij), for a pair
+ * with `on` set (a wall particle within r0); written without branches for vector loops. */
+static inline double wall_repulsion(double r2, int on, double r02, double D) {
+    const double q2 = on ? r02 / r2 : 1.0, rr = on ? r2 : 1.0;
+    const double q4 = q2 * q2, q12 = q4 * q4 * q4;
+    return D * (q12 - q4) / rr;
 }
 
 /* Per-particle quantities the pair loop reads (computed once per evaluation, so that the pair
  * loop has no divisions by rho and no branches on the kind of j). */
-static void prepare_pairs(ry_sim *sim, const wcsph *w) {
+static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
@@ -348,6 +374,12 @@ static void prepare_pairs(ry_sim *sim, const wcsph *w) {
     double *restrict isfl = ps->f[w->f_isfluid], *restrict vis = ps->f[w->f_visc];
     const double *restrict rho = ps->f[RY_F_RHO], *restrict p = ps->f[RY_F_P];
     const double *restrict m = ps->f[RY_F_MASS];
+    if (w->pack_cap < n) {
+        double *pk = realloc(w->pack, n * PK_STRIDE * sizeof(double));
+        RY_CHECK(err, pk != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
+        w->pack = pk;
+        w->pack_cap = n;
+    }
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         const int fluid = ps->kind[i] == RY_KIND_FLUID;
@@ -361,7 +393,23 @@ static void prepare_pairs(ry_sim *sim, const wcsph *w) {
         /* Velocity seen by viscous terms: the ghost velocity on no-slip walls. */
         if (fluid || !noslip)
             for (int d = 0; d < dim; ++d) ps->f[w->f_vg[d]][i] = ps->f[RY_F_VX + d][i];
+        double *restrict P = w->pack + i * PK_STRIDE;
+        for (int d = 0; d < 3; ++d) {
+            P[PK_X + d] = d < dim ? ps->f[RY_F_X + d][i] : 0.0;
+            P[PK_U + d] = d < dim ? ps->f[RY_F_VX + d][i] : 0.0;
+            P[PK_UG + d] = d < dim ? ps->f[w->f_vg[d]][i] : 0.0;
+        }
+        P[PK_RHO] = rho[i];
+        P[PK_PRHO2] = prho2[i];
+        P[PK_VOL] = vol[i];
+        P[PK_MU] = mu[i];
+        P[PK_CS] = cs[i];
+        P[PK_MASS] = m[i];
+        P[PK_FLUID] = isfl[i];
+        P[PK_VISC] = vis[i];
+        P[PK_H] = ps->f[RY_F_H][i];
     }
+    return RY_OK;
 }
 
 /* Accelerations and rates of fluid particles. dim and the kernel type are literals at each call
@@ -371,23 +419,9 @@ fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, 
     ry_particles *ps = &sim->ps;
     const ry_kernel *k = &sim->kernel;
     const size_t n = ps->n;
-    const double *x[3], *v[3], *vg[3];
     double *a[3];
-    ry_particles_coords(ps, x);
-    for (int d = 0; d < 3; ++d) {
-        v[d] = ps->f[RY_F_VX + d];
-        vg[d] = ps->f[w->f_vg[d]];
-        a[d] = ps->f[RY_F_AX + d];
-    }
-    const double *restrict m = ps->f[RY_F_MASS];
-    const double *restrict rho = ps->f[RY_F_RHO];
-    const double *restrict hh = ps->f[RY_F_H];
-    const double *restrict prho2 = ps->f[w->f_prho2];
-    const double *restrict vol = ps->f[w->f_vol];
-    const double *restrict mu = ps->f[w->f_mu];
-    const double *restrict cs = ps->f[w->f_cs];
-    const double *restrict isfl = ps->f[w->f_isfluid];
-    const double *restrict vis = ps->f[w->f_visc];
+    for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + d];
+    const double *restrict pack = w->pack;
     double *restrict drho = ps->f[RY_F_DRHO];
     double *restrict de = ps->f[RY_F_DE];
     const uint8_t *restrict kind = ps->kind;
@@ -404,24 +438,26 @@ fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, 
     const double alpha = w->alpha, beta = w->beta;
     const int periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
     const double inv_c02 = 1.0 / (w->c0 * w->c0);
-    const double rep_r0 = w->rep_r0, rep_d = w->rep_d, rep_r02 = rep_d > 0 ? rep_r0 * rep_r0 : 0.0;
+    const double rep_d = w->rep_d, rep_r02 = rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0;
     const double *rho0m = w->rho0m;
     double amax2 = 0, vmax2 = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)
     for (size_t i = 0; i < n; ++i) {
         if (kind[i] != RY_KIND_FLUID) continue;
-        const double rhoi = rho[i], pri = prho2[i], mui = mu[i], ci = cs[i], hi = hh[i];
+        const double *restrict Pi = pack + i * PK_STRIDE;
+        const double rhoi = Pi[PK_RHO], pri = Pi[PK_PRHO2], mui = Pi[PK_MU], ci = Pi[PK_CS];
+        const double hi = Pi[PK_H];
         const double inv_rhoi = 1.0 / rhoi;
         const double fh = fourtakas ? rho0m[ps->material[i]] * inv_c02 : 0.0;
         /* Scalars, not arrays, so that accumulators stay in registers; z terms vanish at
          * compile time in 2D. */
-        const double xi = x[0][i], yi = x[1][i], zi = dim > 2 ? x[2][i] : 0.0;
-        const double ui = v[0][i], vi = v[1][i], wi = dim > 2 ? v[2][i] : 0.0;
+        const double xi = Pi[PK_X], yi = Pi[PK_Y], zi = dim > 2 ? Pi[PK_Z] : 0.0;
+        const double ui = Pi[PK_U], vi = Pi[PK_V], wi = dim > 2 ? Pi[PK_W] : 0.0;
         const double gx = g[0], gy = g[1], gz = dim > 2 ? g[2] : 0.0;
         double ax = 0, ay = 0, az = 0, dr = 0, dd = 0, dei = 0;
         for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            const uint32_t j = nb[q];
-            double dxv[3] = {xi - x[0][j], yi - x[1][j], dim > 2 ? zi - x[2][j] : 0.0};
+            const double *restrict Pj = pack + (size_t)nb[q] * PK_STRIDE;
+            double dxv[3] = {xi - Pj[PK_X], yi - Pj[PK_Y], dim > 2 ? zi - Pj[PK_Z] : 0.0};
             if (periodic) ry_box_min_image(&sim->box, dxv);
             const double dx = dxv[0], dy = dxv[1], dz = dxv[2];
             const double r2 = dx * dx + dy * dy + dz * dz;
@@ -429,29 +465,29 @@ fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, 
             double fw;
             if (varh) {
                 const double r = sqrt(r2);
-                fw = dwdr_h(k, r, 0.5 * (hi + hh[j])) / r;
+                fw = dwdr_h(k, r, 0.5 * (hi + Pj[PK_H])) / r;
             } else {
                 fw = dnorm_h * ry_kernel_dshape_over_q(kt, sqrt(r2) * inv_h0);
             }
-            const double uj = v[0][j], vj = v[1][j], wj = dim > 2 ? v[2][j] : 0.0;
-            const double ugj = vg[0][j], vgj = vg[1][j], wgj = dim > 2 ? vg[2][j] : 0.0;
+            const double uj = Pj[PK_U], vj = Pj[PK_V], wj = dim > 2 ? Pj[PK_W] : 0.0;
+            const double ugj = Pj[PK_UG], vgj = Pj[PK_VG], wgj = dim > 2 ? Pj[PK_WG] : 0.0;
             const double vx = ui - ugj, vy = vi - vgj, vz = wi - wgj;
             const double vdx = vx * dx + vy * dy + vz * dz;
             const double vdw = (ui - uj) * dx + (vi - vj) * dy + (wi - wj) * dz;
             const double ieta = 1.0 / (r2 + eta2);
             /* Monaghan's artificial viscosity, active for approaching pairs only. */
             const double mu_ij = h0 * (vdx < 0.0 ? vdx : 0.0) * ieta;
-            const double rhoj = rho[j], volj = vol[j], isj = isfl[j];
-            const double pi_ij =
-                (-alpha * 0.5 * (ci + cs[j]) * mu_ij + beta * mu_ij * mu_ij) * 2.0 / (rhoi + rhoj);
-            const double mj = m[j];
-            const double fp = -mj * (pri + prho2[j] + pi_ij) * fw;
+            const double rhoj = Pj[PK_RHO], volj = Pj[PK_VOL], isj = Pj[PK_FLUID];
+            const double prj = Pj[PK_PRHO2];
+            const double pi_ij = (-alpha * 0.5 * (ci + Pj[PK_CS]) * mu_ij + beta * mu_ij * mu_ij) *
+                                 2.0 / (rhoi + rhoj);
+            const double mj = Pj[PK_MASS];
+            const double fp = -mj * (pri + prj + pi_ij) * fw;
             /* Morris et al. (1997) laminar viscosity (a wall takes the fluid's viscosity). */
-            const double muj = isj > 0.0 ? mu[j] : mui;
-            const double fv = vis[j] * volj * (mui + muj) * inv_rhoi * fw * r2 * ieta;
+            const double muj = isj > 0.0 ? Pj[PK_MU] : mui;
+            const double fv = Pj[PK_VISC] * volj * (mui + muj) * inv_rhoi * fw * r2 * ieta;
             /* Wall repulsion, the rare case of a fluid particle very close to a wall. */
-            const double fr =
-                (isj == 0.0 && r2 < rep_r02) ? wall_repulsion(r2, rep_r0, rep_d) : 0.0;
+            const double fr = wall_repulsion(r2, isj == 0.0 && r2 < rep_r02, rep_r02, rep_d);
             ax += fp * dx + fv * vx + fr * dx;
             ay += fp * dy + fv * vy + fr * dy;
             if (dim > 2) az += fp * dz + fv * vz + fr * dz;
@@ -459,7 +495,7 @@ fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, 
             double drj = rhoj - rhoi;
             if (fourtakas) drj += fh * (gx * dx + gy * dy + gz * dz);
             dd -= isj * drj * fw * r2 * ieta * volj;
-            if (energy) dei += 0.5 * mj * (pri + prho2[j] + pi_ij) * vdx * fw;
+            if (energy) dei += 0.5 * mj * (pri + prj + pi_ij) * vdx * fw;
         }
         const double ai[3] = {ax + gx, ay + gy, az + gz}, vi3[3] = {ui, vi, wi};
         double a2 = 0, v2 = 0;
@@ -543,9 +579,9 @@ static inline __attribute__((always_inline)) void fluid_pass_tvf(ry_sim *sim, co
             }
             adi *= fw;
             adj *= fw;
-            const double fr = (!fj && w->rep_d > 0 && r2 < w->rep_r0 * w->rep_r0)
-                                  ? wall_repulsion(r2, w->rep_r0, w->rep_d) * m[i] / vv
-                                  : 0.0;
+            const double fr = wall_repulsion(r2, !fj && r2 < w->rep_r0 * w->rep_r0,
+                                             w->rep_r0 * w->rep_r0, w->rep_d) *
+                              m[i] / vv;
             for (int d = 0; d < dim; ++d) {
                 const double vij = v[d][i] - vg[d][j];
                 double f = -pij * fw * dx[d] + fr * dx[d];
@@ -615,7 +651,7 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     for (size_t i = 0; i < n; ++i)
         if (ps->kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, ps->material[i], rho[i], e[i]);
     wall_pass(sim, w);
-    prepare_pairs(sim, w);
+    RY_TRY(prepare_pairs(sim, w, err));
     force_out res;
     fluid_forces(sim, w, &res);
     w->amax = sqrt(res.amax2);
