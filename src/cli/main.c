@@ -257,6 +257,7 @@ static int cmd_list(int schemes) {
 }
 
 int main(int argc, char **argv) {
+    setvbuf(stdout, NULL, _IOLBF, 0); /* reports appear line by line, also in a pipe or file */
     if (argc < 2) {
         usage(stderr);
         return 2;
