@@ -21,7 +21,7 @@ static int dam_break_text(char *buf, size_t size, int dim, double dx, long steps
             "  - {type: tank, lo: [0, 0], hi: [1.0, 0.55], layers: 3, open_top: true}\n"
             "domain: {lo: [-0.1, -0.1], hi: [1.1, 1.5]}\n"
             "scheme: {name: wcsph, sound_speed: 30, artificial_viscosity: {alpha: 0.02}, "
-            "density_diffusion: fourtakas, hydrostatic_init: true}\n"
+            "density_diffusion: fourtakas, hydrostatic_init: true, wall_repulsion_radius: 0.9}\n"
             "time: {end: 10, cfl: 0.3, max_steps: %ld, output_interval: 100}\n"
             "output: {vtk: false}\n",
             dx, steps);
@@ -33,7 +33,7 @@ static int dam_break_text(char *buf, size_t size, int dim, double dx, long steps
         "  - {type: tank, lo: [0, 0, 0], hi: [1.0, 0.25, 0.55], layers: 3, open_top: true}\n"
         "domain: {lo: [-0.1, -0.1, -0.1], hi: [1.1, 0.35, 1.5]}\n"
         "scheme: {name: wcsph, sound_speed: 30, artificial_viscosity: {alpha: 0.02}, "
-        "density_diffusion: fourtakas, hydrostatic_init: true}\n"
+        "density_diffusion: fourtakas, hydrostatic_init: true, wall_repulsion_radius: 0.9}\n"
         "time: {end: 10, cfl: 0.3, max_steps: %ld, output_interval: 100}\n"
         "output: {vtk: false}\n",
         dx, steps);

@@ -148,6 +148,14 @@ static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
     }
 }
 
+/* Reads the case named on the command line, applies --set and sets the simulation up. */
+static ry_status setup_case(const run_args *a, ry_case **c, ry_sim *sim, ry_error *err) {
+    memset(sim, 0, sizeof *sim);
+    *c = NULL;
+    RY_TRY(load_case(a, c, err));
+    return ry_sim_setup(sim, *c, a->out_dir, err);
+}
+
 static int cmd_run(int argc, char **argv) {
     run_args a;
     int rc = parse_args(argc, argv, 2, &a, 1);
@@ -156,11 +164,9 @@ static int cmd_run(int argc, char **argv) {
         return rc;
     }
     ry_error err = {0};
-    ry_case *c = NULL;
+    ry_case *c;
     ry_sim sim;
-    memset(&sim, 0, sizeof sim);
-    ry_status st = load_case(&a, &c, &err);
-    if (st == RY_OK) st = ry_sim_setup(&sim, c, a.out_dir, &err);
+    ry_status st = setup_case(&a, &c, &sim, &err);
     if (st == RY_OK) st = ry_sim_open_output(&sim, c, &err);
     if (st != RY_OK) {
         rc = fail(&err);
@@ -202,11 +208,9 @@ static int cmd_info(int argc, char **argv) {
         return rc;
     }
     ry_error err = {0};
-    ry_case *c = NULL;
+    ry_case *c;
     ry_sim sim;
-    memset(&sim, 0, sizeof sim);
-    ry_status st = load_case(&a, &c, &err);
-    if (st == RY_OK) st = ry_sim_setup(&sim, c, a.out_dir, &err);
+    ry_status st = setup_case(&a, &c, &sim, &err);
     if (st == RY_OK) st = ry_sim_neighbors(&sim, sim.kernel.radius, &err);
     if (st != RY_OK) {
         rc = fail(&err);
