@@ -17,6 +17,10 @@ typedef struct ry_front_cmp {
     int npoints;    /* reference points compared (T <= T_max) */
     double max_dev; /* largest |Z - Z_ref| */
     double rms_dev; /* RMS of Z - Z_ref */
+    /* The experiment's time origin is uncertain (the gate takes time to lift): the shift dT of
+     * the simulated curve, T -> T + dT in [0, 0.4], that minimises the RMS, and the deviations
+     * after that shift. */
+    double shift, max_dev_shifted, rms_dev_shifted;
 } ry_front_cmp;
 /* series: a table with columns t and front_x; ref: columns T and Z. */
 ry_status ry_compare_front(const ry_table *series, const ry_table *ref, double a, double g,

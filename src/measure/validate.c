@@ -40,18 +40,34 @@ ry_status ry_compare_front(const ry_table *series, const ry_table *ref, double a
         Z[r] = ry_table_at(series, r, cf) / a;
     }
     memset(out, 0, sizeof *out);
-    double sum2 = 0;
-    for (size_t r = 0; r < ref->nrows; ++r) {
-        double Tr = ry_table_at(ref, r, cT);
-        if (Tr > T_max) continue;
-        double Zs = ry_interp_linear(T, Z, n, Tr);
-        if (!isfinite(Zs)) continue;
-        double d = Zs - ry_table_at(ref, r, cZ);
-        out->max_dev = fmax(out->max_dev, fabs(d));
-        sum2 += d * d;
-        out->npoints++;
+    out->rms_dev_shifted = INFINITY;
+    for (int k = 0; k <= 80; ++k) {
+        const double shift = 0.005 * k;
+        double sum2 = 0, maxd = 0;
+        int np = 0;
+        for (size_t r = 0; r < ref->nrows; ++r) {
+            double Tr = ry_table_at(ref, r, cT);
+            if (Tr > T_max) continue;
+            /* Before the shifted start the column has not moved: Z = 1. */
+            double Zs = Tr - shift < T[0] ? 1.0 : ry_interp_linear(T, Z, n, Tr - shift);
+            if (!isfinite(Zs)) continue;
+            double d = Zs - ry_table_at(ref, r, cZ);
+            maxd = fmax(maxd, fabs(d));
+            sum2 += d * d;
+            ++np;
+        }
+        double rms = np ? sqrt(sum2 / np) : NAN;
+        if (k == 0) {
+            out->npoints = np;
+            out->max_dev = maxd;
+            out->rms_dev = rms;
+        }
+        if (rms < out->rms_dev_shifted) {
+            out->rms_dev_shifted = rms;
+            out->max_dev_shifted = maxd;
+            out->shift = shift;
+        }
     }
-    out->rms_dev = out->npoints ? sqrt(sum2 / out->npoints) : NAN;
     free(T);
     free(Z);
     RY_CHECK(err, out->npoints > 0, RY_ERR_INPUT, "no reference point within the simulated time");
