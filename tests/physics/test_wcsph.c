@@ -42,7 +42,7 @@ static void run(const char *case_rel, const char *sub, int nset, const char *con
 }
 
 /* Martin & Moyce column at a/20: the surge front within 0.30 (max) and 0.20 (RMS) of the
- * experiment in Z = front/a for T <= 3 (measured: 0.24 and 0.17; the simulated front runs
+ * experiment in Z = front/a for T <= 3 (measured: 0.23 and 0.18; the simulated front runs
  * ahead, as in other SPH codes, since the experiment's gate takes time to lift). Mass exact,
  * no particle out of the tank or in a wall. */
 static void test_martin_moyce_front(void **state) {
@@ -63,6 +63,12 @@ static void test_martin_moyce_front(void **state) {
     assert_true(cmp.npoints >= 13);
     assert_true(cmp.max_dev <= 0.30);
     assert_true(cmp.rms_dev <= 0.20);
+    /* With the time origin fitted (the gate delay, dT about 0.15-0.2), the shape and speed of
+     * the front: RMS within 0.08 (measured 0.055). */
+    printf("  best time shift %.3f: max |dZ| %.3f, rms %.3f\n", cmp.shift, cmp.max_dev_shifted,
+           cmp.rms_dev_shifted);
+    assert_true(cmp.rms_dev_shifted <= 0.08);
+    assert_true(cmp.shift >= 0.05 && cmp.shift <= 0.3);
     assert_true(ry_mass_drift(&s) <= 1e-12);
     assert_true(ry_column_max(&s, "outside") == 0);
     assert_true(ry_column_max(&s, "in_wall") == 0);
