@@ -199,7 +199,7 @@ static int validate_cavity(vctx *v) {
         char sp[64], sub[64], end[64];
         snprintf(sp, sizeof sp, "spacing=%.10g", 1.0 / N[r]);
         snprintf(sub, sizeof sub, "cavity_re100_%dx%d", N[r], N[r]);
-        snprintf(end, sizeof end, "time.end=%g", v->quick ? 10.0 : 30.0);
+        snprintf(end, sizeof end, "time.end=%g", v->quick ? 10.0 : 15.0);
         const char *sets[] = {sp, end, "output.vtk=false"};
         ry_table s;
         size_t np;

@@ -25,6 +25,7 @@
  *             are evaluated with the predicted velocity and density (v_n + dt a_n).
  *             dt = min(CFL h / (c0 + |v|max), 0.25 sqrt(h / |a|max), 0.125 h^2 / nu). */
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -42,9 +43,12 @@ typedef struct wcsph {
     double vmax, amax, numax, hmax; /* from the last force evaluation */
     int have_forces;
     int f_vh[3], f_rhoh, f_eh, f_hh, f_vg[3];
-    int f_prho2, f_vol, f_mu, f_cs, f_isfluid, f_visc; /* per-evaluation scratch */
+    int f_vol, f_mu, f_isfluid, f_visc; /* per-evaluation scratch (transport velocity) */
+    int int_gamma;                      /* Tait exponent when it is a small integer, else 0 */
     double *pack; /* PK_STRIDE doubles per particle, rebuilt each evaluation */
     size_t pack_cap;
+    double *scratch; /* per thread: the in-range neighbours of one particle, field by field */
+    size_t scratch_cap;
     int repulse;           /* wall repulsion on */
     double rep_r0, rep_d;  /* its radius and strength */
     int tvf;               /* transport-velocity formulation */
@@ -131,13 +135,14 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         ry_particles_add_field(ps, "density_half", "kg/m^3", -1, RY_FIELD_STATE, &w->f_rhoh, err));
     RY_TRY(ry_particles_add_field(ps, "energy_half", "J/kg", -1, RY_FIELD_STATE, &w->f_eh, err));
     RY_TRY(ry_particles_add_field(ps, "h_half", "m", -1, RY_FIELD_STATE, &w->f_hh, err));
-    RY_TRY(ry_particles_add_field(ps, "p_over_rho2", "m^3/kg", -1, 0, &w->f_prho2, err));
-    RY_TRY(ry_particles_add_field(ps, "volume", "m^3", -1, 0, &w->f_vol, err));
-    RY_TRY(ry_particles_add_field(ps, "dynamic_viscosity", "Pa s", -1, 0, &w->f_mu, err));
-    RY_TRY(ry_particles_add_field(ps, "sound_speed", "m/s", -1, 0, &w->f_cs, err));
-    RY_TRY(ry_particles_add_field(ps, "is_fluid", "1", -1, 0, &w->f_isfluid, err));
-    RY_TRY(ry_particles_add_field(ps, "viscous_coupling", "1", -1, 0, &w->f_visc, err));
+    if (w->tvf) { /* per-evaluation quantities the transport-velocity pair loop reads */
+        RY_TRY(ry_particles_add_field(ps, "volume", "m^3", -1, 0, &w->f_vol, err));
+        RY_TRY(ry_particles_add_field(ps, "dynamic_viscosity", "Pa s", -1, 0, &w->f_mu, err));
+        RY_TRY(ry_particles_add_field(ps, "is_fluid", "1", -1, 0, &w->f_isfluid, err));
+        RY_TRY(ry_particles_add_field(ps, "viscous_coupling", "1", -1, 0, &w->f_visc, err));
+    }
 
+    w->int_gamma = w->gamma == 7.0 ? 7 : 0;
     w->Bm = calloc((size_t)sim->nmat, sizeof *w->Bm);
     w->rho0m = calloc((size_t)sim->nmat, sizeof *w->rho0m);
     RY_CHECK(err, w->Bm && w->rho0m, RY_ERR_NOMEM, "out of memory");
@@ -170,14 +175,24 @@ static void wcsph_free(void *state) {
     free(w->Bm);
     free(w->rho0m);
     free(w->pack);
+    free(w->scratch);
     free(w);
 }
 
 static inline double eos_pressure(const wcsph *w, int mat, double rho, double e) {
     double rho0 = w->rho0m[mat];
     switch (w->eos) {
-    case EOS_TAIT:
-        return w->Bm[mat] * (pow(rho / rho0, w->gamma) - 1.0) + w->p_background;
+    case EOS_TAIT: {
+        const double x = rho / rho0;
+        double xg;
+        if (w->int_gamma == 7) {
+            const double x2 = x * x;
+            xg = x2 * x2 * x2 * x;
+        } else {
+            xg = pow(x, w->gamma);
+        }
+        return w->Bm[mat] * (xg - 1.0) + w->p_background;
+    }
     case EOS_LINEAR:
         return w->c0 * w->c0 * (rho - rho0) + w->p_background;
     default:
@@ -330,29 +345,16 @@ typedef struct force_out {
     double amax2, vmax2;
 } force_out;
 
-/* Per-particle record read by the pair loop: everything about j in two (2D) or three (3D)
- * cache lines instead of one array per quantity. */
-enum {
-    PK_X,
-    PK_Y,
-    PK_Z, /* position */
-    PK_U,
-    PK_V,
-    PK_W, /* velocity (continuity uses the wall's own velocity) */
-    PK_UG,
-    PK_VG,
-    PK_WG, /* velocity seen by viscous terms (ghost velocity on no-slip walls) */
-    PK_RHO,
-    PK_PRHO2,
-    PK_VOL,
-    PK_MU,
-    PK_CS,
-    PK_MASS,
-    PK_FLUID,
-    PK_VISC,
-    PK_H,
-    PK_STRIDE = 24
-};
+/* Per-particle record read by the pair loop: everything about j in two (2D, 16 doubles) or
+ * three (3D, 24 doubles) cache lines instead of one array per quantity. Vectors come first, one
+ * component per dimension (position, velocity, velocity seen by viscous terms), then scalars. */
+enum { PK_RHO, PK_PRHO2, PK_VOL, PK_MU, PK_CS, PK_MASS, PK_FLUID, PK_VISC, PK_H, PK_NSCALAR };
+#define PK_X(dim) 0
+#define PK_U(dim) (dim)
+#define PK_UG(dim) (2 * (dim))
+#define PK_S(dim, s) (3 * (dim) + (s))
+#define PK_STRIDE(dim) ((dim) == 2 ? 16 : 24)
+_Static_assert(6 + PK_NSCALAR <= 16 && 9 + PK_NSCALAR <= 24, "pack record too small");
 
 /* Monaghan (1994) wall repulsion per unit mass, divided by r^2 (multiplies x_ij), for a pair
  * with `on` set (a wall particle within r0); written without branches for vector loops. */
@@ -369,149 +371,306 @@ static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
     const size_t n = ps->n;
     const int dim = sim->dim;
     const int noslip = w->wall == WALL_NO_SLIP;
-    double *restrict prho2 = ps->f[w->f_prho2], *restrict vol = ps->f[w->f_vol];
-    double *restrict mu = ps->f[w->f_mu], *restrict cs = ps->f[w->f_cs];
-    double *restrict isfl = ps->f[w->f_isfluid], *restrict vis = ps->f[w->f_visc];
+    const int tvf = w->tvf;
+    double *restrict vol = tvf ? ps->f[w->f_vol] : NULL, *restrict mu = tvf ? ps->f[w->f_mu] : NULL;
+    double *restrict isfl = tvf ? ps->f[w->f_isfluid] : NULL;
+    double *restrict vis = tvf ? ps->f[w->f_visc] : NULL;
     const double *restrict rho = ps->f[RY_F_RHO], *restrict p = ps->f[RY_F_P];
     const double *restrict m = ps->f[RY_F_MASS];
+    const size_t stride = PK_STRIDE(dim);
     if (w->pack_cap < n) {
-        double *pk = realloc(w->pack, n * PK_STRIDE * sizeof(double));
+        double *pk = realloc(w->pack, n * PK_STRIDE(3) * sizeof(double));
         RY_CHECK(err, pk != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
         w->pack = pk;
         w->pack_cap = n;
     }
+    const double *x[3], *v[3];
+    double *vg[3];
+    for (int d = 0; d < 3; ++d) {
+        x[d] = ps->f[RY_F_X + d];
+        v[d] = ps->f[RY_F_VX + d];
+        vg[d] = ps->f[w->f_vg[d]];
+    }
+    const double *restrict hh = ps->f[RY_F_H];
+    const uint8_t *restrict kind = ps->kind;
+    const uint8_t *restrict matl = ps->material;
+    const ry_material *mat = sim->mat;
+    double *restrict pack = w->pack;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
-        const int fluid = ps->kind[i] == RY_KIND_FLUID;
-        prho2[i] = p[i] / (rho[i] * rho[i]);
-        vol[i] = m[i] / rho[i];
-        mu[i] = w->laminar ? rho[i] * sim->mat[ps->material[i]].viscosity : 0.0;
-        cs[i] = sound_speed(w, rho[i], p[i]);
-        isfl[i] = fluid ? 1.0 : 0.0;
+        const int fluid = kind[i] == RY_KIND_FLUID;
+        const double rhoi = rho[i], inv_rho = 1.0 / rhoi;
+        const double mui = w->laminar ? rhoi * mat[matl[i]].viscosity : 0.0;
         /* Viscous coupling: fluid, and no-slip walls (through their ghost velocity). */
-        vis[i] = (fluid || noslip) ? 1.0 : 0.0;
+        const double visi = (fluid || noslip) ? 1.0 : 0.0;
+        if (tvf) {
+            vol[i] = m[i] / rhoi;
+            mu[i] = mui;
+            isfl[i] = fluid ? 1.0 : 0.0;
+            vis[i] = visi;
+        }
         /* Velocity seen by viscous terms: the ghost velocity on no-slip walls. */
         if (fluid || !noslip)
-            for (int d = 0; d < dim; ++d) ps->f[w->f_vg[d]][i] = ps->f[RY_F_VX + d][i];
-        double *restrict P = w->pack + i * PK_STRIDE;
-        for (int d = 0; d < 3; ++d) {
-            P[PK_X + d] = d < dim ? ps->f[RY_F_X + d][i] : 0.0;
-            P[PK_U + d] = d < dim ? ps->f[RY_F_VX + d][i] : 0.0;
-            P[PK_UG + d] = d < dim ? ps->f[w->f_vg[d]][i] : 0.0;
+            for (int d = 0; d < dim; ++d) vg[d][i] = v[d][i];
+        double *restrict P = pack + i * stride;
+        for (int d = 0; d < dim; ++d) {
+            P[PK_X(dim) + d] = x[d][i];
+            P[PK_U(dim) + d] = v[d][i];
+            P[PK_UG(dim) + d] = vg[d][i];
         }
-        P[PK_RHO] = rho[i];
-        P[PK_PRHO2] = prho2[i];
-        P[PK_VOL] = vol[i];
-        P[PK_MU] = mu[i];
-        P[PK_CS] = cs[i];
-        P[PK_MASS] = m[i];
-        P[PK_FLUID] = isfl[i];
-        P[PK_VISC] = vis[i];
-        P[PK_H] = ps->f[RY_F_H][i];
+        double *restrict S = P + PK_S(dim, 0);
+        S[PK_RHO] = rhoi;
+        S[PK_PRHO2] = p[i] * inv_rho * inv_rho;
+        S[PK_VOL] = m[i] * inv_rho;
+        S[PK_MU] = mui;
+        S[PK_CS] = sound_speed(w, rhoi, p[i]);
+        S[PK_MASS] = m[i];
+        S[PK_FLUID] = fluid ? 1.0 : 0.0;
+        S[PK_VISC] = visi;
+        S[PK_H] = hh[i];
     }
     return RY_OK;
 }
 
-/* Accelerations and rates of fluid particles. dim and the kernel type are literals at each call
- * site, so the loop is compiled once per (dimension, kernel) with the kernel inlined. */
-static inline __attribute__((always_inline)) void
-fluid_pass(ry_sim *sim, const wcsph *w, const int dim, const ry_kernel_type kt, force_out *res) {
+/* Everything the pair loop reads, gathered once per evaluation. */
+typedef struct pass_ctx {
+    size_t n;
+    const uint8_t *kind, *material;
+    const size_t *off;
+    const uint32_t *nb;
+    const double *pack, *rho0m;
+    double *a[3], *drho, *de;
+    double *scratch; /* SC_COUNT x len doubles per thread */
+    size_t len;      /* longest neighbour list */
+    const ry_kernel *k;
+    const ry_box *box;
+    double h0, eta2, inv_h0, dnorm_h, rad2, g[3], diff, alpha, beta, inv_c02, rep_d, rep_r02;
+    int cont, varh, energy, fourtakas, periodic;
+} pass_ctx;
+
+static void pass_ctx_init(pass_ctx *c, ry_sim *sim, const wcsph *w) {
     ry_particles *ps = &sim->ps;
     const ry_kernel *k = &sim->kernel;
-    const size_t n = ps->n;
-    double *a[3];
-    for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + d];
-    const double *restrict pack = w->pack;
-    double *restrict drho = ps->f[RY_F_DRHO];
-    double *restrict de = ps->f[RY_F_DE];
-    const uint8_t *restrict kind = ps->kind;
-    const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
-    const double h0 = k->h, eta2 = 0.01 * h0 * h0, inv_h0 = 1.0 / h0;
-    const double dnorm_h = k->dnorm * inv_h0; /* (dW/dr) / r = dnorm_h f'(q)/q */
-    const double rad2 = sim->nl_radius * sim->nl_radius;
-    const double *g = sim->gravity;
-    const int cont = w->density == DENS_CONTINUITY;
-    const int varh = w->variable_h, energy = w->energy;
-    const double diff = w->diffusion != DIFF_NONE ? 2.0 * w->delta * h0 * w->c0 : 0.0;
-    const int fourtakas = w->diffusion == DIFF_FOURTAKAS;
-    const double alpha = w->alpha, beta = w->beta;
-    const int periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
-    const double inv_c02 = 1.0 / (w->c0 * w->c0);
-    const double rep_d = w->rep_d, rep_r02 = rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0;
-    const double *rho0m = w->rho0m;
-    double amax2 = 0, vmax2 = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)
-    for (size_t i = 0; i < n; ++i) {
-        if (kind[i] != RY_KIND_FLUID) continue;
-        const double *restrict Pi = pack + i * PK_STRIDE;
-        const double rhoi = Pi[PK_RHO], pri = Pi[PK_PRHO2], mui = Pi[PK_MU], ci = Pi[PK_CS];
-        const double hi = Pi[PK_H];
-        const double inv_rhoi = 1.0 / rhoi;
-        const double fh = fourtakas ? rho0m[ps->material[i]] * inv_c02 : 0.0;
-        /* Scalars, not arrays, so that accumulators stay in registers; z terms vanish at
-         * compile time in 2D. */
-        const double xi = Pi[PK_X], yi = Pi[PK_Y], zi = dim > 2 ? Pi[PK_Z] : 0.0;
-        const double ui = Pi[PK_U], vi = Pi[PK_V], wi = dim > 2 ? Pi[PK_W] : 0.0;
-        const double gx = g[0], gy = g[1], gz = dim > 2 ? g[2] : 0.0;
-        double ax = 0, ay = 0, az = 0, dr = 0, dd = 0, dei = 0;
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            const double *restrict Pj = pack + (size_t)nb[q] * PK_STRIDE;
-            double dxv[3] = {xi - Pj[PK_X], yi - Pj[PK_Y], dim > 2 ? zi - Pj[PK_Z] : 0.0};
-            if (periodic) ry_box_min_image(&sim->box, dxv);
-            const double dx = dxv[0], dy = dxv[1], dz = dxv[2];
-            const double r2 = dx * dx + dy * dy + dz * dz;
-            if (r2 >= rad2 || r2 <= 0) continue; /* outside the support (Verlet skin) */
-            double fw;
-            if (varh) {
-                const double r = sqrt(r2);
-                fw = dwdr_h(k, r, 0.5 * (hi + Pj[PK_H])) / r;
-            } else {
-                fw = dnorm_h * ry_kernel_dshape_over_q(kt, sqrt(r2) * inv_h0);
-            }
-            const double uj = Pj[PK_U], vj = Pj[PK_V], wj = dim > 2 ? Pj[PK_W] : 0.0;
-            const double ugj = Pj[PK_UG], vgj = Pj[PK_VG], wgj = dim > 2 ? Pj[PK_WG] : 0.0;
-            const double vx = ui - ugj, vy = vi - vgj, vz = wi - wgj;
-            const double vdx = vx * dx + vy * dy + vz * dz;
-            const double vdw = (ui - uj) * dx + (vi - vj) * dy + (wi - wj) * dz;
-            const double ieta = 1.0 / (r2 + eta2);
-            /* Monaghan's artificial viscosity, active for approaching pairs only. */
-            const double mu_ij = h0 * (vdx < 0.0 ? vdx : 0.0) * ieta;
-            const double rhoj = Pj[PK_RHO], volj = Pj[PK_VOL], isj = Pj[PK_FLUID];
-            const double prj = Pj[PK_PRHO2];
-            const double pi_ij = (-alpha * 0.5 * (ci + Pj[PK_CS]) * mu_ij + beta * mu_ij * mu_ij) *
-                                 2.0 / (rhoi + rhoj);
-            const double mj = Pj[PK_MASS];
-            const double fp = -mj * (pri + prj + pi_ij) * fw;
-            /* Morris et al. (1997) laminar viscosity (a wall takes the fluid's viscosity). */
-            const double muj = isj > 0.0 ? Pj[PK_MU] : mui;
-            const double fv = Pj[PK_VISC] * volj * (mui + muj) * inv_rhoi * fw * r2 * ieta;
-            /* Wall repulsion, the rare case of a fluid particle very close to a wall. */
-            const double fr = wall_repulsion(r2, isj == 0.0 && r2 < rep_r02, rep_r02, rep_d);
-            ax += fp * dx + fv * vx + fr * dx;
-            ay += fp * dy + fv * vy + fr * dy;
-            if (dim > 2) az += fp * dz + fv * vz + fr * dz;
-            dr += volj * vdw * fw;
-            double drj = rhoj - rhoi;
-            if (fourtakas) drj += fh * (gx * dx + gy * dy + gz * dz);
-            dd -= isj * drj * fw * r2 * ieta * volj;
-            if (energy) dei += 0.5 * mj * (pri + prj + pi_ij) * vdx * fw;
-        }
-        const double ai[3] = {ax + gx, ay + gy, az + gz}, vi3[3] = {ui, vi, wi};
-        double a2 = 0, v2 = 0;
-        for (int d = 0; d < dim; ++d) {
-            a[d][i] = ai[d];
-            a2 += ai[d] * ai[d];
-            v2 += vi3[d] * vi3[d];
-        }
-        if (cont) drho[i] = rhoi * dr + diff * dd;
-        if (energy) de[i] = dei;
-        amax2 = fmax(amax2, a2);
-        vmax2 = fmax(vmax2, v2);
+    memset(c, 0, sizeof *c);
+    c->n = ps->n;
+    c->kind = ps->kind;
+    c->material = ps->material;
+    c->off = sim->nl.offset;
+    c->nb = sim->nl.j;
+    c->pack = w->pack;
+    c->rho0m = w->rho0m;
+    for (int d = 0; d < 3; ++d) {
+        c->a[d] = ps->f[RY_F_AX + d];
+        c->g[d] = d < sim->dim ? sim->gravity[d] : 0.0;
     }
-    res->amax2 = amax2;
-    res->vmax2 = vmax2;
+    c->drho = ps->f[RY_F_DRHO];
+    c->de = ps->f[RY_F_DE];
+    c->k = k;
+    c->box = &sim->box;
+    c->h0 = k->h;
+    c->eta2 = 0.01 * k->h * k->h;
+    c->inv_h0 = 1.0 / k->h;
+    c->dnorm_h = k->dnorm / k->h; /* (dW/dr) / r = dnorm_h f'(q)/q */
+    c->rad2 = sim->nl_radius * sim->nl_radius;
+    c->cont = w->density == DENS_CONTINUITY;
+    c->varh = w->variable_h;
+    c->energy = w->energy;
+    c->diff = w->diffusion != DIFF_NONE ? 2.0 * w->delta * k->h * w->c0 : 0.0;
+    c->fourtakas = w->diffusion == DIFF_FOURTAKAS;
+    c->alpha = w->alpha;
+    c->beta = w->beta;
+    c->periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
+    c->inv_c02 = 1.0 / (w->c0 * w->c0);
+    c->rep_d = w->rep_d;
+    c->rep_r02 = w->rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0;
+    size_t len = 1;
+    for (size_t i = 0; i < c->n; ++i)
+        if (c->off[i + 1] - c->off[i] > len) len = c->off[i + 1] - c->off[i];
+    c->len = (len + 7) & ~(size_t)7;
 }
+
+/* Fields of the scratch block: the in-range neighbours of one particle, one array per field,
+ * so that the arithmetic runs as a SIMD loop over contiguous memory. */
+enum {
+    SC_DX,
+    SC_DY,
+    SC_DZ,
+    SC_R2,
+    SC_U,
+    SC_V,
+    SC_W,
+    SC_UG,
+    SC_VG,
+    SC_WG,
+    SC_RHO,
+    SC_PRHO2,
+    SC_VOL,
+    SC_MU,
+    SC_CS,
+    SC_MASS,
+    SC_FLUID,
+    SC_VISC,
+    SC_H,
+    SC_COUNT
+};
+
+/* Acceleration and rates of fluid particle i, in two phases: the neighbours within the support
+ * are copied into the scratch block without branches (a pair beyond the support, held by the
+ * Verlet skin, is written and then overwritten), then a SIMD loop sums the pair terms. dim,
+ * the kernel type and `general` are literals at each call site: the body is compiled once per
+ * (dimension, kernel), and the fast variant (general = 0) drops the variable-h, energy and
+ * periodic terms. */
+static inline __attribute__((always_inline)) void
+fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const int dim,
+               const ry_kernel_type kt, const int general, double *amax2, double *vmax2) {
+    if (c->kind[i] != RY_KIND_FLUID) return;
+    const size_t stride = PK_STRIDE(dim);
+    const int X = PK_X(dim), U = PK_U(dim), UG = PK_UG(dim), S = PK_S(dim, 0);
+    const double *restrict pack = c->pack;
+    const uint32_t *restrict nb = c->nb;
+    const size_t len = c->len;
+    const double rad2 = c->rad2;
+    const int varh = general && c->varh, energy = general && c->energy;
+    const int periodic = general && c->periodic;
+    const double *restrict Pi = pack + i * stride;
+    const double *restrict Si = Pi + S;
+    const double xi = Pi[X], yi = Pi[X + 1], zi = dim > 2 ? Pi[X + 2] : 0.0;
+
+    /* Phase 1: gather the neighbours within the support. */
+    double *restrict sdx = sc + SC_DX * len, *restrict sdy = sc + SC_DY * len;
+    double *restrict sdz = sc + SC_DZ * len, *restrict sr2 = sc + SC_R2 * len;
+    size_t cnt = 0;
+    const size_t q0 = c->off[i], q1 = c->off[i + 1];
+    for (size_t q = q0; q < q1; ++q) {
+        const double *restrict Pj = pack + (size_t)nb[q] * stride;
+        const double *restrict Sj = Pj + S;
+        double dxv[3] = {xi - Pj[X], yi - Pj[X + 1], dim > 2 ? zi - Pj[X + 2] : 0.0};
+        if (periodic) ry_box_min_image(c->box, dxv);
+        const double r2 = dxv[0] * dxv[0] + dxv[1] * dxv[1] + dxv[2] * dxv[2];
+        sdx[cnt] = dxv[0];
+        sdy[cnt] = dxv[1];
+        if (dim > 2) sdz[cnt] = dxv[2];
+        sr2[cnt] = r2;
+        for (int d = 0; d < dim; ++d) {
+            sc[(SC_U + d) * len + cnt] = Pj[U + d];
+            sc[(SC_UG + d) * len + cnt] = Pj[UG + d];
+        }
+        sc[SC_RHO * len + cnt] = Sj[PK_RHO];
+        sc[SC_PRHO2 * len + cnt] = Sj[PK_PRHO2];
+        sc[SC_VOL * len + cnt] = Sj[PK_VOL];
+        sc[SC_MU * len + cnt] = Sj[PK_MU];
+        sc[SC_CS * len + cnt] = Sj[PK_CS];
+        sc[SC_MASS * len + cnt] = Sj[PK_MASS];
+        sc[SC_FLUID * len + cnt] = Sj[PK_FLUID];
+        sc[SC_VISC * len + cnt] = Sj[PK_VISC];
+        if (varh) sc[SC_H * len + cnt] = Sj[PK_H];
+        cnt += (r2 < rad2) & (r2 > 0.0);
+    }
+
+    /* Phase 2: the pair terms. */
+    const double h0 = c->h0, eta2 = c->eta2, inv_h0 = c->inv_h0, dnorm_h = c->dnorm_h;
+    const double alpha = c->alpha, beta = c->beta;
+    const double rep_d = c->rep_d, rep_r02 = c->rep_r02;
+    const int fourtakas = c->fourtakas;
+    const double rhoi = Si[PK_RHO], pri = Si[PK_PRHO2], mui = Si[PK_MU], ci = Si[PK_CS];
+    const double hi = Si[PK_H];
+    const double inv_rhoi = 1.0 / rhoi;
+    const double fh = fourtakas ? c->rho0m[c->material[i]] * c->inv_c02 : 0.0;
+    const double ui = Pi[U], vi = Pi[U + 1], wi = dim > 2 ? Pi[U + 2] : 0.0;
+    const double gx = c->g[0], gy = c->g[1], gz = dim > 2 ? c->g[2] : 0.0;
+    const double *restrict su = sc + SC_U * len, *restrict sv = sc + SC_V * len;
+    const double *restrict sw = sc + SC_W * len, *restrict sug = sc + SC_UG * len;
+    const double *restrict svg = sc + SC_VG * len, *restrict swg = sc + SC_WG * len;
+    const double *restrict srho = sc + SC_RHO * len, *restrict sprho2 = sc + SC_PRHO2 * len;
+    const double *restrict svol = sc + SC_VOL * len, *restrict smu = sc + SC_MU * len;
+    const double *restrict scs = sc + SC_CS * len, *restrict smass = sc + SC_MASS * len;
+    const double *restrict sfl = sc + SC_FLUID * len, *restrict svis = sc + SC_VISC * len;
+    const double *restrict sh = sc + SC_H * len;
+    double ax = 0, ay = 0, az = 0, dr = 0, dd = 0, dei = 0;
+#pragma omp simd reduction(+ : ax, ay, az, dr, dd, dei)
+    for (size_t p = 0; p < cnt; ++p) {
+        const double dx = sdx[p], dy = sdy[p], dz = dim > 2 ? sdz[p] : 0.0, r2 = sr2[p];
+        double fw;
+        if (varh) {
+            const double r = sqrt(r2);
+            fw = dwdr_h(c->k, r, 0.5 * (hi + sh[p])) / r;
+        } else {
+            fw = dnorm_h * ry_kernel_dshape_over_q(kt, sqrt(r2) * inv_h0);
+        }
+        const double uj = su[p], vj = sv[p], wj = dim > 2 ? sw[p] : 0.0;
+        const double vx = ui - sug[p], vy = vi - svg[p], vz = dim > 2 ? wi - swg[p] : 0.0;
+        const double vdx = vx * dx + vy * dy + vz * dz;
+        const double vdw = (ui - uj) * dx + (vi - vj) * dy + (wi - wj) * dz;
+        const double ieta = 1.0 / (r2 + eta2);
+        /* Monaghan's artificial viscosity, active for approaching pairs only. */
+        const double mu_ij = h0 * (vdx < 0.0 ? vdx : 0.0) * ieta;
+        const double rhoj = srho[p], volj = svol[p], isj = sfl[p];
+        const double prj = sprho2[p];
+        const double pi_ij =
+            (-alpha * 0.5 * (ci + scs[p]) * mu_ij + beta * mu_ij * mu_ij) * 2.0 / (rhoi + rhoj);
+        const double mj = smass[p];
+        const double fp = -mj * (pri + prj + pi_ij) * fw;
+        /* Morris et al. (1997) laminar viscosity (a wall takes the fluid's viscosity). */
+        const double muj = isj * smu[p] + (1.0 - isj) * mui; /* isj is 0 or 1 */
+        const double fv = svis[p] * volj * (mui + muj) * inv_rhoi * fw * r2 * ieta;
+        /* Wall repulsion, the rare case of a fluid particle very close to a wall. */
+        const double fr = wall_repulsion(r2, isj == 0.0 && r2 < rep_r02, rep_r02, rep_d);
+        ax += fp * dx + fv * vx + fr * dx;
+        ay += fp * dy + fv * vy + fr * dy;
+        if (dim > 2) az += fp * dz + fv * vz + fr * dz;
+        dr += volj * vdw * fw;
+        double drj = rhoj - rhoi;
+        if (fourtakas) drj += fh * (gx * dx + gy * dy + gz * dz);
+        dd -= isj * drj * fw * r2 * ieta * volj;
+        if (energy) dei += 0.5 * mj * (pri + prj + pi_ij) * vdx * fw;
+    }
+    const double ai[3] = {ax + gx, ay + gy, az + gz}, vi3[3] = {ui, vi, wi};
+    double a2 = 0, v2 = 0;
+    for (int d = 0; d < dim; ++d) {
+        c->a[d][i] = ai[d];
+        a2 += ai[d] * ai[d];
+        v2 += vi3[d] * vi3[d];
+    }
+    if (c->cont) c->drho[i] = rhoi * dr + c->diff * dd;
+    if (energy) c->de[i] = dei;
+    *amax2 = fmax(*amax2, a2);
+    *vmax2 = fmax(*vmax2, v2);
+}
+
+/* One parallel loop per (dimension, kernel, variant). The OpenMP region must sit in a function
+ * of its own for each: the outlined body is made before inlining, so a region inside a shared
+ * inline function would see dim and the kernel as run-time values. */
+typedef void (*fluid_driver)(const pass_ctx *c, force_out *res);
+#define RY_FLUID_DRIVER_(DIM, KT, GEN)                                                             \
+    static void fluid_##DIM##_##KT##_##GEN(const pass_ctx *c, force_out *res) {                    \
+        double amax2 = 0, vmax2 = 0;                                                               \
+        const size_t n = c->n;                                                                     \
+        _Pragma("omp parallel reduction(max : amax2, vmax2)") {                                    \
+            double *sc = c->scratch + (size_t)omp_get_thread_num() * SC_COUNT * c->len;            \
+            _Pragma("omp for schedule(dynamic, 64)") for (size_t i = 0; i < n; ++i)                \
+                fluid_particle(c, i, sc, DIM, KT, GEN, &amax2, &vmax2);                            \
+        }                                                                                          \
+        res->amax2 = amax2;                                                                        \
+        res->vmax2 = vmax2;                                                                        \
+    }
+#define RY_FLUID_DRIVERS_(KT)                                                                      \
+    RY_FLUID_DRIVER_(2, KT, 0)                                                                     \
+    RY_FLUID_DRIVER_(2, KT, 1) RY_FLUID_DRIVER_(3, KT, 0) RY_FLUID_DRIVER_(3, KT, 1)
+RY_FLUID_DRIVERS_(RY_KERNEL_CUBIC)
+RY_FLUID_DRIVERS_(RY_KERNEL_QUINTIC)
+RY_FLUID_DRIVERS_(RY_KERNEL_WENDLAND_C2)
+RY_FLUID_DRIVERS_(RY_KERNEL_WENDLAND_C4)
+RY_FLUID_DRIVERS_(RY_KERNEL_LUCY)
+RY_FLUID_DRIVERS_(RY_KERNEL_GAUSSIAN)
+#define RY_FLUID_ROW_(KT)                                                                          \
+    [KT] = {{fluid_2_##KT##_0, fluid_2_##KT##_1}, {fluid_3_##KT##_0, fluid_3_##KT##_1}}
+static const fluid_driver fluid_drivers[RY_KERNEL_COUNT][2][2] = {
+    RY_FLUID_ROW_(RY_KERNEL_CUBIC),       RY_FLUID_ROW_(RY_KERNEL_QUINTIC),
+    RY_FLUID_ROW_(RY_KERNEL_WENDLAND_C2), RY_FLUID_ROW_(RY_KERNEL_WENDLAND_C4),
+    RY_FLUID_ROW_(RY_KERNEL_LUCY),        RY_FLUID_ROW_(RY_KERNEL_GAUSSIAN)};
+#undef RY_FLUID_ROW_
+#undef RY_FLUID_DRIVERS_
+#undef RY_FLUID_DRIVER_
 
 /* Transport-velocity formulation (Adami, Hu & Adams 2013, eq. 8 and 13): pressure with the
  * density-weighted inter-particle average, the extra stress A = rho v (v~ - v), the viscous
@@ -606,32 +765,27 @@ static inline __attribute__((always_inline)) void fluid_pass_tvf(ry_sim *sim, co
 }
 
 /* Picks the specialised pair loop. */
-static void fluid_forces(ry_sim *sim, const wcsph *w, force_out *res) {
+static ry_status fluid_forces(ry_sim *sim, wcsph *w, force_out *res, ry_error *err) {
     if (w->tvf) {
         if (sim->dim == 2)
             fluid_pass_tvf(sim, w, 2, res);
         else
             fluid_pass_tvf(sim, w, 3, res);
-        return;
+        return RY_OK;
     }
-#define RY_WCSPH_CASE_(kt)                                                                         \
-    case kt:                                                                                       \
-        if (sim->dim == 2)                                                                         \
-            fluid_pass(sim, w, 2, kt, res);                                                        \
-        else                                                                                       \
-            fluid_pass(sim, w, 3, kt, res);                                                        \
-        break;
-    switch (sim->kernel.type) {
-        RY_WCSPH_CASE_(RY_KERNEL_CUBIC)
-        RY_WCSPH_CASE_(RY_KERNEL_QUINTIC)
-        RY_WCSPH_CASE_(RY_KERNEL_WENDLAND_C2)
-        RY_WCSPH_CASE_(RY_KERNEL_WENDLAND_C4)
-        RY_WCSPH_CASE_(RY_KERNEL_LUCY)
-        RY_WCSPH_CASE_(RY_KERNEL_GAUSSIAN)
-    default:
-        break;
+    pass_ctx c;
+    pass_ctx_init(&c, sim, w);
+    const size_t cap = c.len * (size_t)omp_get_max_threads();
+    if (w->scratch_cap < cap) {
+        double *sc = realloc(w->scratch, cap * SC_COUNT * sizeof(double));
+        RY_CHECK(err, sc != NULL, RY_ERR_NOMEM, "out of memory (neighbour scratch)");
+        w->scratch = sc;
+        w->scratch_cap = cap;
     }
-#undef RY_WCSPH_CASE_
+    c.scratch = w->scratch;
+    const int general = c.varh || c.energy || c.periodic;
+    fluid_drivers[sim->kernel.type][sim->dim - 2][general](&c, res);
+    return RY_OK;
 }
 
 /* Evaluates all rates at the current (predicted) state. */
@@ -653,7 +807,7 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     wall_pass(sim, w);
     RY_TRY(prepare_pairs(sim, w, err));
     force_out res;
-    fluid_forces(sim, w, &res);
+    RY_TRY(fluid_forces(sim, w, &res, err));
     w->amax = sqrt(res.amax2);
     w->vmax = sqrt(res.vmax2);
     w->have_forces = 1;
