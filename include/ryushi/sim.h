@@ -50,6 +50,19 @@ typedef struct ry_probe {
 } ry_probe;
 const ry_probe *const *ry_probes(void);
 
+/* A line profile (case file `profiles`): values sampled at evenly spaced points from `from` to
+ * `to` at every output time, the state at that time or, with `average_from`, the mean over all
+ * output times from then on. */
+typedef struct ry_profile {
+    char *name;
+    double from[3], to[3];
+    int npoints;
+    int averaged;        /* average over output times t >= average_from */
+    double average_from; /* [s] */
+    int nsamples;        /* samples in sum */
+    double *sum;         /* npoints x (dim velocity components, p, rho) */
+} ry_profile;
+
 struct ry_sim {
     int dim;
     ry_particles ps;
@@ -86,6 +99,8 @@ struct ry_sim {
     /* measurements */
     int nprobes;
     const ry_probe **probes;
+    int nprofiles;
+    ry_profile *profiles;
 
     /* output */
     char *out_dir;
@@ -144,6 +159,21 @@ ry_status ry_sim_check(const ry_sim *sim, ry_error *err);
 
 /* Counts fluid particles outside the domain box, and total mass of a kind. */
 size_t ry_sim_count_outside(const ry_sim *sim);
+
+/* Profiles: read from the case (ry_sim_setup calls it), sampled and written as
+ * profile_NAME.csv at each output time (ry_sim_write_output calls it), freed. */
+ry_status ry_profiles_setup(ry_sim *sim, ry_case *c, ry_error *err);
+ry_status ry_profiles_output(ry_sim *sim, ry_error *err);
+void ry_profiles_free(ry_sim *sim);
+const ry_profile *ry_profile_find(const ry_sim *sim, const char *name);
+/* Point k of a profile (x has 3 entries, unused ones 0). */
+void ry_profile_point(const ry_sim *sim, const ry_profile *pf, int k, double *x);
+/* Mean so far of value `value` (0..dim-1 velocity, dim pressure, dim + 1 density) at point k;
+ * NAN before the first sample. */
+double ry_profile_mean(const ry_sim *sim, const ry_profile *pf, int k, int value);
+/* Shepard interpolation at x of velocity, pressure and density (dim + 2 values) over fluid and
+ * wall particles; 0 (and NANs) when no particle is within the kernel support. */
+int ry_sample_point(const ry_sim *sim, const double *x, double *out);
 
 /* Monotonic wall clock in seconds. */
 double ry_wall_time(void);

@@ -32,13 +32,11 @@ double ry_mass_drift(const ry_table *series);
 /* Largest value of a column (e.g. outside, in_wall); 0 when absent. */
 double ry_column_max(const ry_table *series, const char *name);
 
-/* Velocity component comp (0 = u, 1 = v) at n points, interpolated from fluid and wall
- * particles by a Shepard (normalised kernel) sum; walls contribute their own velocity. */
-ry_status ry_sample_velocity(const ry_sim *sim, int comp, size_t n, const double *px,
-                             const double *py, double *out, ry_error *err);
-/* Cavity centrelines against Ghia et al.: u along x = L/2 at the reference's y/L and v along
- * y = L/2 at its x/L, for a cavity [0, L]^2 with lid speed U. Writes centreline_u.csv and
- * centreline_v.csv in out_dir and returns the RMS of (u - u_ref)/U and (v - v_ref)/U. */
+/* Cavity centrelines against Ghia et al.: the case's profiles `u_vertical_centreline` (u along
+ * x = L/2, bottom to top) and `v_horizontal_centreline` (v along y = L/2, left to right), time
+ * averaged when they have average_from, interpolated at the reference's y/L and x/L, for a
+ * cavity [0, L]^2 with lid speed U. Writes centreline_u.csv and centreline_v.csv in out_dir and
+ * returns the RMS of (u - u_ref)/U and (v - v_ref)/U. */
 ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_table *ghia_u,
                                 const ry_table *ghia_v, const char *out_dir, double *rms_u,
                                 double *rms_v, ry_error *err);

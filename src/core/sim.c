@@ -231,6 +231,7 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_CHECK(err, sim->out_dir && sim->case_name, RY_ERR_NOMEM, "out of memory");
 
     RY_TRY(read_probes(sim, c, err));
+    RY_TRY(ry_profiles_setup(sim, c, err));
     RY_TRY(read_scheme(sim, c, err));
     ry_case_touch(c, "description");
     RY_TRY(ry_case_check_unused(c, err));
@@ -246,6 +247,7 @@ void ry_sim_free(ry_sim *sim) {
     for (int i = 0; i < sim->nmat; ++i) free(sim->mat[i].name);
     free(sim->mat);
     free(sim->probes);
+    ry_profiles_free(sim);
     free(sim->out_dir);
     free(sim->case_name);
     memset(sim, 0, sizeof *sim);

@@ -99,6 +99,7 @@ ry_status ry_sim_write_output(ry_sim *sim, ry_error *err) {
     RY_TRY(csv_append(w, err, "\n"));
     snprintf(path, sizeof path, "%s/series.csv", sim->out_dir);
     RY_TRY(ry_atomic_write(path, w->csv, w->csv_len, err));
+    RY_TRY(ry_profiles_output(sim, err));
     sim->output_index++;
     return RY_OK;
 }

@@ -104,63 +104,38 @@ double ry_column_max(const ry_table *series, const char *name) {
     return m;
 }
 
-ry_status ry_sample_velocity(const ry_sim *sim, int comp, size_t n, const double *px,
-                             const double *py, double *out, ry_error *err) {
-    RY_CHECK(err, sim->dim == 2 && comp >= 0 && comp < 2, RY_ERR_INPUT,
-             "velocity sampling is for 2D cases (u or v)");
-    const ry_particles *ps = &sim->ps;
-    const ry_kernel *k = &sim->kernel;
-    const double r2max = k->radius * k->radius;
-#pragma omp parallel for schedule(static)
-    for (size_t q = 0; q < n; ++q) {
-        double sw = 0, su = 0;
-        for (size_t i = 0; i < ps->n; ++i) {
-            double dx = ps->f[RY_F_X][i] - px[q], dy = ps->f[RY_F_Y][i] - py[q];
-            double r2 = dx * dx + dy * dy;
-            if (r2 >= r2max) continue;
-            double wv = ry_kernel_w(k, sqrt(r2)) * ps->f[RY_F_MASS][i] / ps->f[RY_F_RHO][i];
-            sw += wv;
-            su += wv * ps->f[RY_F_VX + comp][i];
-        }
-        out[q] = sw > 0 ? su / sw : NAN;
-    }
-    return RY_OK;
-}
-
-/* One centreline: samples at the reference coordinates, writes the CSV, returns the RMS. */
-static ry_status centreline(const ry_sim *sim, double L, double U, const ry_table *ref,
-                            const char *coord, const char *value, int comp, const char *path,
-                            double *rms, ry_error *err) {
+/* One centreline against a reference: the profile's mean, interpolated linearly at the
+ * reference's coordinates (coordinate `axis` of the points, in units of L); writes the CSV and
+ * returns the RMS of (value/U - reference). */
+static ry_status centreline(const ry_sim *sim, const char *profile, int axis, double L, double U,
+                            const ry_table *ref, const char *coord, const char *value, int comp,
+                            const char *path, double *rms, ry_error *err) {
     int cc = ry_table_col(ref, coord), cv = ry_table_col(ref, value);
     RY_CHECK(err, cc >= 0 && cv >= 0, RY_ERR_INPUT, "reference lacks columns %s, %s", coord, value);
-    size_t n = ref->nrows;
-    double *px = malloc(n * sizeof *px), *py = malloc(n * sizeof *py);
-    double *val = malloc(n * sizeof *val);
-    ry_status st = RY_OK;
-    if (!px || !py || !val) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
-    for (size_t r = 0; r < n && st == RY_OK; ++r) {
-        double s = ry_table_at(ref, r, cc) * L;
-        px[r] = comp == 0 ? 0.5 * L : s;
-        py[r] = comp == 0 ? s : 0.5 * L;
-    }
-    if (st == RY_OK) st = ry_sample_velocity(sim, comp, n, px, py, val, err);
+    const ry_profile *pf = ry_profile_find(sim, profile);
+    RY_CHECK(err, pf != NULL, RY_ERR_INPUT, "the case has no profile named '%s'", profile);
+    RY_CHECK(err, pf->nsamples > 0, RY_ERR_INPUT, "profile '%s' has no samples", profile);
+    const double a = pf->from[axis], b = pf->to[axis];
+    RY_CHECK(err, b > a, RY_ERR_INPUT, "profile '%s' must run along increasing coordinate %d",
+             profile, axis);
     ry_atomic_file f;
-    if (st == RY_OK) st = ry_atomic_open(&f, path, err);
-    if (st == RY_OK) {
-        double sum2 = 0;
-        fprintf(f.fp, "%s,%s,%s_ref\n", coord, value, value);
-        for (size_t r = 0; r < n; ++r) {
-            double sim_v = val[r] / U, ref_v = ry_table_at(ref, r, cv);
-            fprintf(f.fp, "%.6f,%.6f,%.6f\n", ry_table_at(ref, r, cc), sim_v, ref_v);
-            sum2 += (sim_v - ref_v) * (sim_v - ref_v);
-        }
-        *rms = sqrt(sum2 / (double)n);
-        st = ry_atomic_commit(&f, err);
+    RY_TRY(ry_atomic_open(&f, path, err));
+    double sum2 = 0;
+    fprintf(f.fp, "%s,%s,%s_ref\n", coord, value, value);
+    for (size_t r = 0; r < ref->nrows; ++r) {
+        const double s = (ry_table_at(ref, r, cc) * L - a) / (b - a) * (pf->npoints - 1);
+        int k = (int)floor(s);
+        if (k < 0) k = 0;
+        if (k > pf->npoints - 2) k = pf->npoints - 2;
+        const double fr = fmin(fmax(s - k, 0.0), 1.0);
+        const double val = (1 - fr) * ry_profile_mean(sim, pf, k, comp) +
+                           fr * ry_profile_mean(sim, pf, k + 1, comp);
+        const double sim_v = val / U, ref_v = ry_table_at(ref, r, cv);
+        fprintf(f.fp, "%.6f,%.6f,%.6f\n", ry_table_at(ref, r, cc), sim_v, ref_v);
+        sum2 += (sim_v - ref_v) * (sim_v - ref_v);
     }
-    free(px);
-    free(py);
-    free(val);
-    return st;
+    *rms = ref->nrows ? sqrt(sum2 / (double)ref->nrows) : NAN;
+    return ry_atomic_commit(&f, err);
 }
 
 ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_table *ghia_u,
@@ -168,7 +143,9 @@ ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_
                                 double *rms_v, ry_error *err) {
     char path[4096];
     snprintf(path, sizeof path, "%s/centreline_u.csv", out_dir);
-    RY_TRY(centreline(sim, L, U, ghia_u, "y_over_L", "u_over_U", 0, path, rms_u, err));
+    RY_TRY(centreline(sim, "u_vertical_centreline", 1, L, U, ghia_u, "y_over_L", "u_over_U", 0,
+                      path, rms_u, err));
     snprintf(path, sizeof path, "%s/centreline_v.csv", out_dir);
-    return centreline(sim, L, U, ghia_v, "x_over_L", "v_over_U", 1, path, rms_v, err);
+    return centreline(sim, "v_horizontal_centreline", 0, L, U, ghia_v, "x_over_L", "v_over_U", 1,
+                      path, rms_v, err);
 }

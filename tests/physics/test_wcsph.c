@@ -173,15 +173,20 @@ static void test_cavity_re1_steady(void **state) {
 }
 
 /* Re = 100 cavity at 50x50 to t = 10 L/U with the transport-velocity formulation: centreline
- * velocities against Ghia et al. (1982), RMS of (u - u_Ghia)/U within 0.035 and of v within
- * 0.025 (measured 0.026 and 0.012; the 100x100 target of 0.02 is checked by ryushi
- * validate). */
+ * velocities averaged over t = 8..10 (21 samples) against Ghia et al. (1982), RMS of
+ * (u - u_Ghia)/U within 0.03 and of v within 0.02 (measured 0.020 and 0.012; the 100x100
+ * target of 0.02 is checked by ryushi validate). */
 static void test_cavity_re100_ghia(void **state) {
     (void)state;
-    const char *sets[] = {"spacing=0.02", "time.end=10", "output.vtk=false"};
+    const char *sets[] = {"spacing=0.02",
+                          "time.end=10",
+                          "output.vtk=false",
+                          "time.output_interval=0.1",
+                          "profiles[0].average_from=8",
+                          "profiles[1].average_from=8"};
     ry_table s, gu, gv;
     ry_sim sim;
-    run("cases/cavity_re100.yaml", "cavity100", 3, sets, &s, &sim);
+    run("cases/cavity_re100.yaml", "cavity100", 6, sets, &s, &sim);
     char pu[4096], pv[4096], od[600];
     ry_error err;
     path(pu, sizeof pu, "data/reference/ghia1982_re100_u_vertical_centreline.csv");
@@ -192,8 +197,8 @@ static void test_cavity_re100_ghia(void **state) {
     double ru, rv;
     assert_int_equal(ry_cavity_centrelines(&sim, 1.0, 1.0, &gu, &gv, od, &ru, &rv, &err), RY_OK);
     printf("cavity Re = 100, 50x50: rms u %.4f, rms v %.4f\n", ru, rv);
-    assert_true(ru <= 0.035);
-    assert_true(rv <= 0.025);
+    assert_true(ru <= 0.03);
+    assert_true(rv <= 0.02);
     assert_true(ry_column_max(&s, "outside") == 0);
     assert_true(ry_column_max(&s, "in_wall") == 0);
     ry_sim_free(&sim);
