@@ -257,39 +257,44 @@ static inline double w_h(const ry_kernel *k, double r, double h) {
     return k->norm * sd * ry_kernel_shape(k->type, r / h);
 }
 
-/* Density by summation for fluid particles (walls keep their extrapolated density). */
-static void density_summation(ry_sim *sim, const wcsph *w) {
-    ry_particles *ps = &sim->ps;
+/* Density by summation for fluid particles (walls keep their extrapolated density):
+ * rho_i = sum_j m_j W_ij, or with the transport velocity rho_i = m_i sum_j W_ij (Adami et al.
+ * 2013). (Variable h needs the continuity equation, so h is the reference one here.) dim, the
+ * kernel and `periodic` are literals at each call site, as for the force loops. */
+static inline __attribute__((always_inline)) void
+density_particle(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
+                 const ry_kernel_type kt, const int periodic) {
+    const ry_particles *ps = &sim->ps;
+    if (ps->kind[i] != RY_KIND_FLUID) return;
     const ry_kernel *k = &sim->kernel;
-    const int dim = sim->dim;
-    const size_t n = ps->n;
     const double *restrict m = ps->f[RY_F_MASS];
-    const double *restrict hh = ps->f[RY_F_H];
-    double *restrict rho = ps->f[RY_F_RHO];
-    const double *x[3];
-    ry_particles_coords(ps, x);
-    const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
-    const double rad2 = sim->nl_radius * sim->nl_radius;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
-        const int numden = w->tvf; /* rho_i = m_i sum_j W_ij (Adami et al. 2013) */
-        double s = m[i] * (w->variable_h ? w_h(k, 0.0, hh[i]) : ry_kernel_w(k, 0.0));
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            uint32_t j = nb[q];
-            double dx[3] = {0, 0, 0}, r2 = 0;
-            for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
-            ry_box_min_image(&sim->box, dx);
-            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
-            if (r2 >= rad2) continue;
-            double r = sqrt(r2);
-            s += (numden ? m[i] : m[j]) *
-                 (w->variable_h ? w_h(k, r, 0.5 * (hh[i] + hh[j])) : ry_kernel_w(k, r));
-        }
-        rho[i] = s;
+    const double *restrict x0 = ps->f[RY_F_X], *restrict x1 = ps->f[RY_F_Y];
+    const double *restrict x2 = dim > 2 ? ps->f[RY_F_Z] : x0;
+    const size_t q1 = sim->nl.offset[i + 1];
+    const uint32_t *restrict nb = sim->nl.j;
+    const double rad2 = sim->nl_radius * sim->nl_radius, inv_h = k->inv_h;
+    const double xi = x0[i], yi = x1[i], zi = dim > 2 ? x2[i] : 0.0;
+    const int numden = w->tvf;
+    double s = 0.0;
+    for (size_t q = sim->nl.offset[i]; q < q1; ++q) {
+        const uint32_t j = nb[q];
+        double dx[3] = {xi - x0[j], yi - x1[j], dim > 2 ? zi - x2[j] : 0.0};
+        if (periodic) ry_box_min_image(&sim->box, dx);
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+        const double wq = r2 < rad2 ? ry_kernel_shape(kt, sqrt(r2) * inv_h) : 0.0;
+        s += (numden ? 1.0 : m[j]) * wq;
     }
+    ps->f[RY_F_RHO][i] =
+        m[i] * k->norm * ry_kernel_shape(kt, 0.0) + (numden ? m[i] : 1.0) * k->norm * s;
 }
+
+typedef void (*density_driver)(ry_sim *sim, const wcsph *w);
+#define RY_DENSITY_DRIVER_(DIM, KT, PER)                                                           \
+    static void density_##DIM##_##KT##_##PER(ry_sim *sim, const wcsph *w) {                        \
+        const size_t n = sim->ps.n;                                                                \
+        _Pragma("omp parallel for schedule(static)") for (size_t i = 0; i < n; ++i)                \
+            density_particle(sim, w, i, DIM, KT, PER);                                             \
+    }
 
 /* Wall particles: pressure, density and ghost velocity extrapolated from the fluid (Adami et
  * al. 2012, eq. 22-23 and 27-28). */
@@ -676,20 +681,18 @@ static const fluid_driver fluid_drivers[RY_KERNEL_COUNT][2][2] = {
  * density-weighted inter-particle average, the extra stress A = rho v (v~ - v), the viscous
  * term with the inter-particle averaged viscosity, and the background-pressure acceleration
  * that moves particles with v~. V_i = m_i / rho_i. */
-static inline __attribute__((always_inline)) void fluid_pass_tvf(ry_sim *sim, const wcsph *w,
-                                                                 const int dim, force_out *res) {
-    ry_particles *ps = &sim->ps;
+static inline __attribute__((always_inline)) void
+tvf_particle(const ry_sim *sim, const wcsph *w, size_t i, const int dim, const ry_kernel_type kt,
+             const int periodic, double *amax2, double *vmax2) {
+    const ry_particles *ps = &sim->ps;
+    if (ps->kind[i] != RY_KIND_FLUID) return;
     const ry_kernel *k = &sim->kernel;
-    const size_t n = ps->n;
     const double *x[3], *v[3], *vg[3], *vt[3];
-    double *a[3], *ab[3];
-    ry_particles_coords(ps, x);
     for (int d = 0; d < 3; ++d) {
-        v[d] = ps->f[RY_F_VX + d];
-        vg[d] = ps->f[w->f_vg[d]];
-        vt[d] = ps->f[w->f_vt[d]];
-        a[d] = ps->f[RY_F_AX + d];
-        ab[d] = ps->f[w->f_abg[d]];
+        x[d] = ps->f[RY_F_X + (d < dim ? d : 0)];
+        v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+        vg[d] = ps->f[w->f_vg[d < dim ? d : 0]];
+        vt[d] = ps->f[w->f_vt[d < dim ? d : 0]];
     }
     const double *restrict m = ps->f[RY_F_MASS];
     const double *restrict rho = ps->f[RY_F_RHO];
@@ -698,79 +701,114 @@ static inline __attribute__((always_inline)) void fluid_pass_tvf(ry_sim *sim, co
     const double *restrict mu = ps->f[w->f_mu];
     const double *restrict isfl = ps->f[w->f_isfluid];
     const double *restrict vis = ps->f[w->f_visc];
-    const uint8_t *restrict kind = ps->kind;
-    const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *restrict nb = sim->nl.j;
     const double rad2 = sim->nl_radius * sim->nl_radius;
-    const double pb = w->p_tvf;
-    const double *g = sim->gravity;
-    const int periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
-    double amax2 = 0, vmax2 = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)
-    for (size_t i = 0; i < n; ++i) {
-        if (kind[i] != RY_KIND_FLUID) continue;
-        const double rhoi = rho[i], pi = p[i], mui = mu[i], vi2 = vol[i] * vol[i];
-        double ai[3] = {0, 0, 0}, bi[3] = {0, 0, 0}, Ai[3], v2 = 0;
-        /* A_i = rho_i v_i (v~_i - v_i), a tensor; A_i . grad W = rho_i v_i ((v~_i - v_i).gradW) */
-        for (int d = 0; d < dim; ++d) {
-            Ai[d] = vt[d][i] - v[d][i];
-            v2 += v[d][i] * v[d][i];
-        }
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            const uint32_t j = nb[q];
-            double dx[3] = {0, 0, 0}, r2 = 0;
-            for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
-            if (periodic) ry_box_min_image(&sim->box, dx);
-            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
-            if (r2 >= rad2 || r2 <= 0) continue;
-            const double r = sqrt(r2);
-            const double fw = ry_kernel_dwdr(k, r) / r; /* grad W = fw dx */
-            const double rhoj = rho[j], vv = vi2 + vol[j] * vol[j];
-            const double pij = (rhoj * pi + rhoi * p[j]) / (rhoi + rhoj);
-            const int fj = isfl[j] > 0.0;
-            const double muj = fj ? mu[j] : mui;
-            const double etaij = (mui + muj) > 0 ? 2.0 * mui * muj / (mui + muj) : 0.0;
-            /* (A_i + A_j)/2 . grad W; walls carry no extra stress. */
-            double adi = 0, adj = 0;
-            for (int d = 0; d < dim; ++d) {
-                adi += Ai[d] * dx[d];
-                if (fj) adj += (vt[d][j] - v[d][j]) * dx[d];
-            }
-            adi *= fw;
-            adj *= fw;
-            const double fr = wall_repulsion(r2, !fj && r2 < w->rep_r0 * w->rep_r0,
-                                             w->rep_r0 * w->rep_r0, w->rep_d) *
-                              m[i] / vv;
-            for (int d = 0; d < dim; ++d) {
-                const double vij = v[d][i] - vg[d][j];
-                double f = -pij * fw * dx[d] + fr * dx[d];
-                f += 0.5 * (rhoi * v[d][i] * adi + (fj ? rhoj * v[d][j] * adj : 0.0));
-                f += vis[j] * etaij * vij * fw; /* eta_ij v_ij (1/r) dW/dr */
-                ai[d] += vv * f;
-                bi[d] += vv * fw * dx[d];
-            }
-        }
-        double a2 = 0;
-        for (int d = 0; d < dim; ++d) {
-            ai[d] = ai[d] / m[i] + g[d];
-            a[d][i] = ai[d];
-            ab[d][i] = -pb / m[i] * bi[d];
-            a2 += ai[d] * ai[d];
-        }
-        amax2 = fmax(amax2, a2);
-        vmax2 = fmax(vmax2, v2);
+    const double dnorm_h = k->dnorm * k->inv_h, inv_h = k->inv_h; /* (dW/dr)/r */
+    const double rep_r02 = w->rep_r0 * w->rep_r0, rep_d = w->rep_d;
+    const double rhoi = rho[i], pi = p[i], mui = mu[i], vi2 = vol[i] * vol[i];
+    double ai[3] = {0, 0, 0}, bi[3] = {0, 0, 0}, Ai[3] = {0, 0, 0}, vi[3] = {0, 0, 0}, xi[3];
+    double v2 = 0;
+    /* A_i = rho_i v_i (v~_i - v_i), a tensor; A_i . grad W = rho_i v_i ((v~_i - v_i).gradW) */
+    for (int d = 0; d < dim; ++d) {
+        vi[d] = v[d][i];
+        xi[d] = x[d][i];
+        Ai[d] = vt[d][i] - vi[d];
+        v2 += vi[d] * vi[d];
     }
-    res->amax2 = amax2;
-    res->vmax2 = vmax2;
+    const size_t q1 = sim->nl.offset[i + 1];
+    for (size_t q = sim->nl.offset[i]; q < q1; ++q) {
+        const uint32_t j = nb[q];
+        double dx[3] = {0, 0, 0}, r2 = 0;
+        for (int d = 0; d < dim; ++d) dx[d] = xi[d] - x[d][j];
+        if (periodic) ry_box_min_image(&sim->box, dx);
+        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        if (r2 >= rad2 || r2 <= 0) continue;
+        const double fw = dnorm_h * ry_kernel_dshape_over_q(kt, sqrt(r2) * inv_h); /* gradW/x */
+        const double rhoj = rho[j], vv = vi2 + vol[j] * vol[j];
+        const double pij = (rhoj * pi + rhoi * p[j]) / (rhoi + rhoj);
+        const double fj = isfl[j]; /* 0 or 1 */
+        const double muj = fj * mu[j] + (1.0 - fj) * mui;
+        const double etaij = (mui + muj) > 0 ? 2.0 * mui * muj / (mui + muj) : 0.0;
+        /* (A_i + A_j)/2 . grad W; walls carry no extra stress. */
+        double adi = 0, adj = 0;
+        for (int d = 0; d < dim; ++d) {
+            adi += Ai[d] * dx[d];
+            adj += (vt[d][j] - v[d][j]) * dx[d];
+        }
+        adi *= fw;
+        adj *= fw * fj;
+        const double fr = wall_repulsion(r2, fj == 0.0 && r2 < rep_r02, rep_r02, rep_d) * m[i] / vv;
+        const double visj = vis[j];
+        for (int d = 0; d < dim; ++d) {
+            const double vij = vi[d] - vg[d][j];
+            double f = -pij * fw * dx[d] + fr * dx[d];
+            f += 0.5 * (rhoi * vi[d] * adi + rhoj * v[d][j] * adj);
+            f += visj * etaij * vij * fw; /* eta_ij v_ij (1/r) dW/dr */
+            ai[d] += vv * f;
+            bi[d] += vv * fw * dx[d];
+        }
+    }
+    double a2 = 0;
+    for (int d = 0; d < dim; ++d) {
+        ai[d] = ai[d] / m[i] + sim->gravity[d];
+        ps->f[RY_F_AX + d][i] = ai[d];
+        ps->f[w->f_abg[d]][i] = -w->p_tvf / m[i] * bi[d];
+        a2 += ai[d] * ai[d];
+    }
+    *amax2 = fmax(*amax2, a2);
+    *vmax2 = fmax(*vmax2, v2);
+}
+
+typedef void (*tvf_driver)(ry_sim *sim, const wcsph *w, force_out *res);
+#define RY_TVF_DRIVER_(DIM, KT, PER)                                                               \
+    static void tvf_##DIM##_##KT##_##PER(ry_sim *sim, const wcsph *w, force_out *res) {            \
+        double amax2 = 0, vmax2 = 0;                                                               \
+        const size_t n = sim->ps.n;                                                                \
+        _Pragma("omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)") for (      \
+            size_t i = 0; i < n; ++i) tvf_particle(sim, w, i, DIM, KT, PER, &amax2, &vmax2);       \
+        res->amax2 = amax2;                                                                        \
+        res->vmax2 = vmax2;                                                                        \
+    }
+#define RY_TVF_DRIVERS_(KT)                                                                        \
+    RY_TVF_DRIVER_(2, KT, 0)                                                                       \
+    RY_TVF_DRIVER_(2, KT, 1)                                                                       \
+    RY_TVF_DRIVER_(3, KT, 0) RY_TVF_DRIVER_(3, KT, 1) RY_DENSITY_DRIVER_(2, KT, 0)                 \
+        RY_DENSITY_DRIVER_(2, KT, 1) RY_DENSITY_DRIVER_(3, KT, 0) RY_DENSITY_DRIVER_(3, KT, 1)
+RY_TVF_DRIVERS_(RY_KERNEL_CUBIC)
+RY_TVF_DRIVERS_(RY_KERNEL_QUINTIC)
+RY_TVF_DRIVERS_(RY_KERNEL_WENDLAND_C2)
+RY_TVF_DRIVERS_(RY_KERNEL_WENDLAND_C4)
+RY_TVF_DRIVERS_(RY_KERNEL_LUCY)
+RY_TVF_DRIVERS_(RY_KERNEL_GAUSSIAN)
+#define RY_TVF_ROW_(KT) [KT] = {{tvf_2_##KT##_0, tvf_2_##KT##_1}, {tvf_3_##KT##_0, tvf_3_##KT##_1}}
+static const tvf_driver tvf_drivers[RY_KERNEL_COUNT][2][2] = {
+    RY_TVF_ROW_(RY_KERNEL_CUBIC),       RY_TVF_ROW_(RY_KERNEL_QUINTIC),
+    RY_TVF_ROW_(RY_KERNEL_WENDLAND_C2), RY_TVF_ROW_(RY_KERNEL_WENDLAND_C4),
+    RY_TVF_ROW_(RY_KERNEL_LUCY),        RY_TVF_ROW_(RY_KERNEL_GAUSSIAN)};
+#define RY_DENSITY_ROW_(KT)                                                                        \
+    [KT] = {{density_2_##KT##_0, density_2_##KT##_1}, {density_3_##KT##_0, density_3_##KT##_1}}
+static const density_driver density_drivers[RY_KERNEL_COUNT][2][2] = {
+    RY_DENSITY_ROW_(RY_KERNEL_CUBIC),       RY_DENSITY_ROW_(RY_KERNEL_QUINTIC),
+    RY_DENSITY_ROW_(RY_KERNEL_WENDLAND_C2), RY_DENSITY_ROW_(RY_KERNEL_WENDLAND_C4),
+    RY_DENSITY_ROW_(RY_KERNEL_LUCY),        RY_DENSITY_ROW_(RY_KERNEL_GAUSSIAN)};
+#undef RY_TVF_ROW_
+#undef RY_DENSITY_ROW_
+#undef RY_TVF_DRIVERS_
+#undef RY_TVF_DRIVER_
+#undef RY_DENSITY_DRIVER_
+
+static int is_periodic(const ry_sim *sim) {
+    return sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
+}
+
+static void density_summation(ry_sim *sim, const wcsph *w) {
+    density_drivers[sim->kernel.type][sim->dim - 2][is_periodic(sim)](sim, w);
 }
 
 /* Picks the specialised pair loop. */
 static ry_status fluid_forces(ry_sim *sim, wcsph *w, force_out *res, ry_error *err) {
     if (w->tvf) {
-        if (sim->dim == 2)
-            fluid_pass_tvf(sim, w, 2, res);
-        else
-            fluid_pass_tvf(sim, w, 3, res);
+        tvf_drivers[sim->kernel.type][sim->dim - 2][is_periodic(sim)](sim, w, res);
         return RY_OK;
     }
     pass_ctx c;
