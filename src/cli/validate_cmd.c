@@ -231,14 +231,15 @@ static int validate_cavity(vctx *v) {
         char label[64], path[4200];
         snprintf(label, sizeof label, "ryushi %dx%d", N[r], N[r]);
         ry_table cu, cv;
-        snprintf(path, sizeof path, "%s/centreline_u.csv", odir);
+        /* The whole profiles (101 points; L = 1 m, U = 1 m/s, so metres and m/s are L and U). */
+        snprintf(path, sizeof path, "%s/profile_u_vertical_centreline.csv", odir);
         if (ry_table_read(&cu, path, &err) == RY_OK) {
-            add_series(p, 0, label, &cu, "u_over_U", 1, "y_over_L", 1, ry_plot_style_line(), &err);
+            add_series(p, 0, label, &cu, "u", 1, "y", 1, ry_plot_style_line(), &err);
             ry_table_free(&cu);
         }
-        snprintf(path, sizeof path, "%s/centreline_v.csv", odir);
+        snprintf(path, sizeof path, "%s/profile_v_horizontal_centreline.csv", odir);
         if (ry_table_read(&cv, path, &err) == RY_OK) {
-            add_series(p, 1, label, &cv, "x_over_L", 1, "v_over_U", 1, ry_plot_style_line(), &err);
+            add_series(p, 1, label, &cv, "x", 1, "v", 1, ry_plot_style_line(), &err);
             ry_table_free(&cv);
         }
     }

@@ -445,7 +445,7 @@ typedef struct pass_ctx {
     const uint32_t *nb;
     const double *pack, *rho0m;
     double *a[3], *drho, *de;
-    double *scratch; /* SC_COUNT x len doubles per thread */
+    double *scratch; /* (SC_COUNT + 1) x len doubles per thread */
     size_t len;      /* longest neighbour list */
     const ry_kernel *k;
     const ry_box *box;
@@ -541,14 +541,17 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
     const double *restrict Si = Pi + S;
     const double xi = Pi[X], yi = Pi[X + 1], zi = dim > 2 ? Pi[X + 2] : 0.0;
 
-    /* Phase 1: gather the neighbours within the support. */
+    /* Phase 1: the neighbours within the support (indices and separations, stored without
+     * branches: a pair beyond the support is written and then overwritten), then their
+     * fields copied field by field. */
     double *restrict sdx = sc + SC_DX * len, *restrict sdy = sc + SC_DY * len;
     double *restrict sdz = sc + SC_DZ * len, *restrict sr2 = sc + SC_R2 * len;
+    size_t *restrict sj = (size_t *)(sc + SC_COUNT * len);
     size_t cnt = 0;
     const size_t q0 = c->off[i], q1 = c->off[i + 1];
     for (size_t q = q0; q < q1; ++q) {
-        const double *restrict Pj = pack + (size_t)nb[q] * stride;
-        const double *restrict Sj = Pj + S;
+        const size_t jo = (size_t)nb[q] * stride;
+        const double *restrict Pj = pack + jo;
         double dxv[3] = {xi - Pj[X], yi - Pj[X + 1], dim > 2 ? zi - Pj[X + 2] : 0.0};
         if (periodic) ry_box_min_image(c->box, dxv);
         const double r2 = dxv[0] * dxv[0] + dxv[1] * dxv[1] + dxv[2] * dxv[2];
@@ -556,20 +559,25 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         sdy[cnt] = dxv[1];
         if (dim > 2) sdz[cnt] = dxv[2];
         sr2[cnt] = r2;
-        for (int d = 0; d < dim; ++d) {
-            sc[(SC_U + d) * len + cnt] = Pj[U + d];
-            sc[(SC_UG + d) * len + cnt] = Pj[UG + d];
-        }
-        sc[SC_RHO * len + cnt] = Sj[PK_RHO];
-        sc[SC_PRHO2 * len + cnt] = Sj[PK_PRHO2];
-        sc[SC_VOL * len + cnt] = Sj[PK_VOL];
-        sc[SC_MU * len + cnt] = Sj[PK_MU];
-        sc[SC_CS * len + cnt] = Sj[PK_CS];
-        sc[SC_MASS * len + cnt] = Sj[PK_MASS];
-        sc[SC_FLUID * len + cnt] = Sj[PK_FLUID];
-        sc[SC_VISC * len + cnt] = Sj[PK_VISC];
-        if (varh) sc[SC_H * len + cnt] = Sj[PK_H];
+        sj[cnt] = jo;
         cnt += (r2 < rad2) & (r2 > 0.0);
+    }
+    for (size_t p = 0; p < cnt; ++p) {
+        const double *restrict Pj = pack + sj[p];
+        const double *restrict Sj = Pj + S;
+        for (int d = 0; d < dim; ++d) {
+            sc[(SC_U + d) * len + p] = Pj[U + d];
+            sc[(SC_UG + d) * len + p] = Pj[UG + d];
+        }
+        sc[SC_RHO * len + p] = Sj[PK_RHO];
+        sc[SC_PRHO2 * len + p] = Sj[PK_PRHO2];
+        sc[SC_VOL * len + p] = Sj[PK_VOL];
+        sc[SC_MU * len + p] = Sj[PK_MU];
+        sc[SC_CS * len + p] = Sj[PK_CS];
+        sc[SC_MASS * len + p] = Sj[PK_MASS];
+        sc[SC_FLUID * len + p] = Sj[PK_FLUID];
+        sc[SC_VISC * len + p] = Sj[PK_VISC];
+        if (varh) sc[SC_H * len + p] = Sj[PK_H];
     }
 
     /* Phase 2: the pair terms. */
@@ -651,7 +659,7 @@ typedef void (*fluid_driver)(const pass_ctx *c, force_out *res);
         double amax2 = 0, vmax2 = 0;                                                               \
         const size_t n = c->n;                                                                     \
         _Pragma("omp parallel reduction(max : amax2, vmax2)") {                                    \
-            double *sc = c->scratch + (size_t)omp_get_thread_num() * SC_COUNT * c->len;            \
+            double *sc = c->scratch + (size_t)omp_get_thread_num() * (SC_COUNT + 1) * c->len;      \
             _Pragma("omp for schedule(dynamic, 64)") for (size_t i = 0; i < n; ++i)                \
                 fluid_particle(c, i, sc, DIM, KT, GEN, &amax2, &vmax2);                            \
         }                                                                                          \
@@ -772,8 +780,9 @@ typedef void (*tvf_driver)(ry_sim *sim, const wcsph *w, force_out *res);
 #define RY_TVF_DRIVERS_(KT)                                                                        \
     RY_TVF_DRIVER_(2, KT, 0)                                                                       \
     RY_TVF_DRIVER_(2, KT, 1)                                                                       \
-    RY_TVF_DRIVER_(3, KT, 0) RY_TVF_DRIVER_(3, KT, 1) RY_DENSITY_DRIVER_(2, KT, 0)                 \
-        RY_DENSITY_DRIVER_(2, KT, 1) RY_DENSITY_DRIVER_(3, KT, 0) RY_DENSITY_DRIVER_(3, KT, 1)
+    RY_TVF_DRIVER_(3, KT, 0)                                                                       \
+    RY_TVF_DRIVER_(3, KT, 1) RY_DENSITY_DRIVER_(2, KT, 0) RY_DENSITY_DRIVER_(2, KT, 1)             \
+        RY_DENSITY_DRIVER_(3, KT, 0) RY_DENSITY_DRIVER_(3, KT, 1)
 RY_TVF_DRIVERS_(RY_KERNEL_CUBIC)
 RY_TVF_DRIVERS_(RY_KERNEL_QUINTIC)
 RY_TVF_DRIVERS_(RY_KERNEL_WENDLAND_C2)
@@ -815,7 +824,7 @@ static ry_status fluid_forces(ry_sim *sim, wcsph *w, force_out *res, ry_error *e
     pass_ctx_init(&c, sim, w);
     const size_t cap = c.len * (size_t)omp_get_max_threads();
     if (w->scratch_cap < cap) {
-        double *sc = realloc(w->scratch, cap * SC_COUNT * sizeof(double));
+        double *sc = realloc(w->scratch, cap * (SC_COUNT + 1) * sizeof(double));
         RY_CHECK(err, sc != NULL, RY_ERR_NOMEM, "out of memory (neighbour scratch)");
         w->scratch = sc;
         w->scratch_cap = cap;
