@@ -560,7 +560,7 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         if (dim > 2) sdz[cnt] = dxv[2];
         sr2[cnt] = r2;
         sj[cnt] = jo;
-        cnt += (r2 < rad2) & (r2 > 0.0);
+        cnt += r2 < rad2; /* the list never holds i itself */
     }
     for (size_t p = 0; p < cnt; ++p) {
         const double *restrict Pj = pack + sj[p];
@@ -606,7 +606,7 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         double fw;
         if (varh) {
             const double r = sqrt(r2);
-            fw = dwdr_h(c->k, r, 0.5 * (hi + sh[p])) / r;
+            fw = r > 0.0 ? dwdr_h(c->k, r, 0.5 * (hi + sh[p])) / r : 0.0;
         } else {
             fw = dnorm_h * ry_kernel_dshape_over_q(kt, sqrt(r2) * inv_h0);
         }
@@ -627,7 +627,8 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         const double muj = isj * smu[p] + (1.0 - isj) * mui; /* isj is 0 or 1 */
         const double fv = svis[p] * volj * (mui + muj) * inv_rhoi * fw * r2 * ieta;
         /* Wall repulsion, the rare case of a fluid particle very close to a wall. */
-        const double fr = wall_repulsion(r2, isj == 0.0 && r2 < rep_r02, rep_r02, rep_d);
+        const double fr =
+            wall_repulsion(r2, isj == 0.0 && r2 < rep_r02 && r2 > 0.0, rep_r02, rep_d);
         ax += fp * dx + fv * vx + fr * dx;
         ay += fp * dy + fv * vy + fr * dy;
         if (dim > 2) az += fp * dz + fv * vz + fr * dz;
@@ -781,8 +782,9 @@ typedef void (*tvf_driver)(ry_sim *sim, const wcsph *w, force_out *res);
     RY_TVF_DRIVER_(2, KT, 0)                                                                       \
     RY_TVF_DRIVER_(2, KT, 1)                                                                       \
     RY_TVF_DRIVER_(3, KT, 0)                                                                       \
-    RY_TVF_DRIVER_(3, KT, 1) RY_DENSITY_DRIVER_(2, KT, 0) RY_DENSITY_DRIVER_(2, KT, 1)             \
-        RY_DENSITY_DRIVER_(3, KT, 0) RY_DENSITY_DRIVER_(3, KT, 1)
+    RY_TVF_DRIVER_(3, KT, 1)                                                                       \
+    RY_DENSITY_DRIVER_(2, KT, 0) RY_DENSITY_DRIVER_(2, KT, 1) RY_DENSITY_DRIVER_(3, KT, 0)         \
+        RY_DENSITY_DRIVER_(3, KT, 1)
 RY_TVF_DRIVERS_(RY_KERNEL_CUBIC)
 RY_TVF_DRIVERS_(RY_KERNEL_QUINTIC)
 RY_TVF_DRIVERS_(RY_KERNEL_WENDLAND_C2)
