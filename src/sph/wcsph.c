@@ -245,6 +245,10 @@ static void hydrostatic_init(ry_sim *sim, const wcsph *w) {
     }
 }
 
+static int is_periodic(const ry_sim *sim) {
+    return sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
+}
+
 /* The kernel at a smoothing length other than the reference one (variable h). */
 static inline double dwdr_h(const ry_kernel *k, double r, double h) {
     double s = k->h / h, sd = s * s;
@@ -311,6 +315,7 @@ static void wall_pass(ry_sim *sim, const wcsph *w) {
     const uint32_t *nb = sim->nl.j;
     const double *g = sim->gravity;
     const double rad2 = k->radius * k->radius;
+    const int periodic = is_periodic(sim);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_WALL) continue;
@@ -320,7 +325,7 @@ static void wall_pass(ry_sim *sim, const wcsph *w) {
             if (ps->kind[j] != RY_KIND_FLUID) continue;
             double dx[3] = {0, 0, 0}, r2 = 0;
             for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
-            ry_box_min_image(&sim->box, dx);
+            if (periodic) ry_box_min_image(&sim->box, dx);
             for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
             if (r2 >= rad2) continue;
             double wij = ry_kernel_w(k, sqrt(r2));
@@ -783,8 +788,8 @@ typedef void (*tvf_driver)(ry_sim *sim, const wcsph *w, force_out *res);
     RY_TVF_DRIVER_(2, KT, 1)                                                                       \
     RY_TVF_DRIVER_(3, KT, 0)                                                                       \
     RY_TVF_DRIVER_(3, KT, 1)                                                                       \
-    RY_DENSITY_DRIVER_(2, KT, 0) RY_DENSITY_DRIVER_(2, KT, 1) RY_DENSITY_DRIVER_(3, KT, 0)         \
-        RY_DENSITY_DRIVER_(3, KT, 1)
+    RY_DENSITY_DRIVER_(2, KT, 0)                                                                   \
+    RY_DENSITY_DRIVER_(2, KT, 1) RY_DENSITY_DRIVER_(3, KT, 0) RY_DENSITY_DRIVER_(3, KT, 1)
 RY_TVF_DRIVERS_(RY_KERNEL_CUBIC)
 RY_TVF_DRIVERS_(RY_KERNEL_QUINTIC)
 RY_TVF_DRIVERS_(RY_KERNEL_WENDLAND_C2)
@@ -807,10 +812,6 @@ static const density_driver density_drivers[RY_KERNEL_COUNT][2][2] = {
 #undef RY_TVF_DRIVERS_
 #undef RY_TVF_DRIVER_
 #undef RY_DENSITY_DRIVER_
-
-static int is_periodic(const ry_sim *sim) {
-    return sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
-}
 
 static void density_summation(ry_sim *sim, const wcsph *w) {
     density_drivers[sim->kernel.type][sim->dim - 2][is_periodic(sim)](sim, w);
