@@ -26,6 +26,8 @@
 #              REPS (default 3), PYTHON (default /usr/bin/python3, the interpreter Debian's
 #              python3-pysph is installed for).
 # Exit status: 0 on success, 1 with a message on stderr when a step fails.
+# Other work on the cores makes the numbers noisy, the 2-thread ones most: the table states the
+# load average before and after the runs.
 set -eu
 
 DX=${DX:-0.02}
@@ -45,7 +47,7 @@ cd "$ROOT"
 
 case $STEPS in '' | *[!0-9]*) die "STEPS must be a positive integer, got '$STEPS'" ;; esac
 case $REPS in '' | *[!0-9]*) die "REPS must be a positive integer, got '$REPS'" ;; esac
-[ "$STEPS" -ge 1 ] && [ "$REPS" -ge 1 ] || die "STEPS and REPS must be at least 1"
+if [ "$STEPS" -lt 1 ] || [ "$REPS" -lt 1 ]; then die "STEPS and REPS must be at least 1"; fi
 
 # --- PySPH -------------------------------------------------------------------------------
 if ! dpkg-query -W -f='${Status}' python3-pysph 2>/dev/null | grep -q 'ok installed'; then
@@ -80,48 +82,48 @@ median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) exit 1; print v[int(
 
 # pysph_run MODE THREADS STEPS DIR: one run of the example; prints "particles steps seconds t_end"
 pysph_run() {
-    mode=$1 threads=$2 steps=$3 dir=$4
-    rm -rf "$dir"
-    if [ "$mode" = omp ]; then flag=--openmp; else flag=--no-openmp; fi
-    OMP_NUM_THREADS=$threads "$PYTHON" -m pysph.examples.dam_break_2d --dx "$DX" \
-        --max-steps "$steps" --disable-output -q -v debug $flag -d "$dir" \
-        >"$dir.out" 2>&1 || {
-        tail -n 20 "$dir.out" >&2
-        die "PySPH run failed ($mode, $threads thread(s), $steps steps)"
+    p_mode=$1 p_threads=$2 p_steps=$3 p_dir=$4
+    rm -rf "$p_dir"
+    if [ "$p_mode" = omp ]; then p_flag=--openmp; else p_flag=--no-openmp; fi
+    OMP_NUM_THREADS=$p_threads "$PYTHON" -m pysph.examples.dam_break_2d --dx "$DX" \
+        --max-steps "$p_steps" --disable-output -q -v debug $p_flag -d "$p_dir" \
+        >"$p_dir.out" 2>&1 || {
+        tail -n 20 "$p_dir.out" >&2
+        die "PySPH run failed ($p_mode, $p_threads thread(s), $p_steps steps)"
     }
-    log=$dir/dam_break_2d.log
-    [ -f "$log" ] || die "PySPH wrote no log $log"
+    p_log=$p_dir/dam_break_2d.log
+    [ -f "$p_log" ] || die "PySPH wrote no log $p_log"
     awk '
         /^ *Total: [0-9]+/ { n = $2 }
         /Run took:/ { for (i = 1; i <= NF; ++i) if ($i == "took:") s = $(i + 1) }
         /control handler: count=/ { sub(/.*count=/, ""); c = $0 + 0 }
         /Iteration=[0-9]+, time=/ {
             line = $0; sub(/.*time=/, "", line); split(line, a, /, timestep=/); t = a[1] + a[2] }
-        END { if (n == "" || s == "" || c == "") exit 1; print n, c, s, t }' "$log" ||
-        die "cannot read particles, steps and run time from $log"
+        END { if (n == "" || s == "" || c == "") exit 1; print n, c, s, t }' "$p_log" ||
+        die "cannot read particles, steps and run time from $p_log"
 }
 
 # ryushi_run THREADS STEPS DIR: one run; prints the summary line
 RY_SPACING=$(awk -v d="$DX" -v s="$SCALE" 'BEGIN { printf "%.9g", d * s }')
 ryushi_run() {
-    threads=$1 steps=$2 dir=$3
-    OMP_NUM_THREADS=$threads build/ryushi run cases/dam_break_seed.yaml -o "$dir" \
+    r_threads=$1 r_steps=$2 r_dir=$3
+    OMP_NUM_THREADS=$r_threads build/ryushi run cases/dam_break_seed.yaml -o "$r_dir" \
         --set spacing="$RY_SPACING" --set 'bodies[1].hi=[1.0,1.0]' --set 'bodies[1].layers=4' \
-        --set output.vtk=false --set time.max_steps="$steps" --threads "$threads" \
-        >"$dir.out" 2>&1 || {
-        tail -n 20 "$dir.out" >&2
-        die "ryushi run failed ($threads thread(s), $steps steps)"
+        --set output.vtk=false --set time.max_steps="$r_steps" --threads "$r_threads" \
+        >"$r_dir.out" 2>&1 || {
+        tail -n 20 "$r_dir.out" >&2
+        die "ryushi run failed ($r_threads thread(s), $r_steps steps)"
     }
-    line=$(tail -n 1 "$dir.out")
-    case $line in *particle_steps_per_s=*) ;; *) die "no summary line from ryushi: $line" ;; esac
-    echo "$line"
+    r_line=$(tail -n 1 "$r_dir.out")
+    case $r_line in *particle_steps_per_s=*) ;; *) die "no summary line from ryushi: $r_line" ;; esac
+    echo "$r_line"
 }
 field() { # field KEY LINE
     printf '%s\n' "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"
 }
 
 # --- warm-up (compiles PySPH's kernels into ~/.pysph on a first run; not timed) -----------
-note "warm-up: PySPH serial and OpenMP builds, ryushi (the first PySPH run compiles for minutes)"
+note "warm-up: PySPH serial and OpenMP builds, ryushi (a first PySPH run compiles its kernels, about 20 s per build)"
 for mode in serial omp; do
     t0=$(date +%s)
     pysph_run "$mode" 1 5 "$WORK/warm_$mode" >/dev/null
@@ -138,14 +140,16 @@ for threads in 1 2; do
     : >"$WORK/ry_rates"
     r=1
     while [ "$r" -le "$REPS" ]; do
-        set -- $(pysph_run "$mode" "$threads" "$STEPS" "$WORK/py_${threads}_$r")
+        res=$(pysph_run "$mode" "$threads" "$STEPS" "$WORK/py_${threads}_$r") || exit 1
+        # shellcheck disable=SC2086 # four numbers, split on purpose
+        set -- $res
         py_n=$1 py_steps=$2 py_s=$3 py_t=$4
         [ "$py_steps" -eq "$STEPS" ] || die "PySPH took $py_steps steps, expected $STEPS"
         rate=$(awk -v n="$py_n" -v k="$py_steps" -v s="$py_s" 'BEGIN { printf "%.6g", n * k / s }')
         echo "$rate" >>"$WORK/py_rates"
         note "  PySPH  threads=$threads run $r: $py_n particles, $py_steps steps, ${py_s} s, $rate particle-steps/s, t=$py_t s"
 
-        line=$(ryushi_run "$threads" "$STEPS" "$WORK/ry_${threads}_$r")
+        line=$(ryushi_run "$threads" "$STEPS" "$WORK/ry_${threads}_$r") || exit 1
         ry_n=$(field particles "$line") ry_steps=$(field steps "$line")
         ry_rate=$(field particle_steps_per_s "$line") ry_t=$(field t "$line")
         [ "$ry_steps" -eq "$STEPS" ] || die "ryushi took $ry_steps steps, expected $STEPS"
@@ -161,6 +165,7 @@ done
 echo
 echo "2D dam break (column L x 2L in a 4L x 4L open tank), PySPH --dx $DX, ryushi spacing $RY_SPACING m;"
 echo "median of $REPS runs of $STEPS steps; particle-steps/s = (fluid + wall particles) x steps / wall s"
+echo "$(nproc) processors; load average $load before the runs, $(cut -d' ' -f1 /proc/loadavg) after"
 awk '
     { code[NR] = $1; th[NR] = $2; n[NR] = $3; k[NR] = $4; v[NR] = $5; rate[$1, $2] = $5 }
     END {
@@ -170,7 +175,7 @@ awk '
         for (i = 1; i <= NR; ++i)
             if (code[i] == "ryushi") printf "%-8s %10d %8d %8d %18.4g\n", code[i], n[i], th[i], k[i], v[i]
         for (t = 1; t <= 2; t *= 2)
-            printf "ratio ryushi/PySPH at %d thread%s: %.2f\n", t, t > 1 ? "s" : "", rate["ryushi", t] / rate["PySPH", t]
+            printf "ratio ryushi/PySPH at %d thread%s: %.2f\n", t, (t > 1 ? "s" : ""), rate["ryushi", t] / rate["PySPH", t]
         printf "speed-up 2 threads / 1 thread: PySPH %.2f, ryushi %.2f\n",
             rate["PySPH", 2] / rate["PySPH", 1], rate["ryushi", 2] / rate["ryushi", 1]
     }' "$RESULTS" || die "cannot print the table"
