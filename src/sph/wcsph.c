@@ -449,6 +449,7 @@ typedef struct pass_ctx {
     const size_t *off;
     const uint32_t *nb;
     const double *pack, *rho0m;
+    const double *x[3]; /* positions, for the range test (denser in memory than the records) */
     double *a[3], *drho, *de;
     double *scratch; /* (SC_COUNT + 1) x len doubles per thread */
     size_t len;      /* longest neighbour list */
@@ -470,6 +471,7 @@ static void pass_ctx_init(pass_ctx *c, ry_sim *sim, const wcsph *w) {
     c->pack = w->pack;
     c->rho0m = w->rho0m;
     for (int d = 0; d < 3; ++d) {
+        c->x[d] = ps->f[RY_F_X + (d < sim->dim ? d : 0)];
         c->a[d] = ps->f[RY_F_AX + d];
         c->g[d] = d < sim->dim ? sim->gravity[d] : 0.0;
     }
@@ -554,17 +556,17 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
     size_t *restrict sj = (size_t *)(sc + SC_COUNT * len);
     size_t cnt = 0;
     const size_t q0 = c->off[i], q1 = c->off[i + 1];
+    const double *restrict x0 = c->x[0], *restrict x1 = c->x[1], *restrict x2 = c->x[2];
     for (size_t q = q0; q < q1; ++q) {
-        const size_t jo = (size_t)nb[q] * stride;
-        const double *restrict Pj = pack + jo;
-        double dxv[3] = {xi - Pj[X], yi - Pj[X + 1], dim > 2 ? zi - Pj[X + 2] : 0.0};
+        const uint32_t j = nb[q];
+        double dxv[3] = {xi - x0[j], yi - x1[j], dim > 2 ? zi - x2[j] : 0.0};
         if (periodic) ry_box_min_image(c->box, dxv);
         const double r2 = dxv[0] * dxv[0] + dxv[1] * dxv[1] + dxv[2] * dxv[2];
         sdx[cnt] = dxv[0];
         sdy[cnt] = dxv[1];
         if (dim > 2) sdz[cnt] = dxv[2];
         sr2[cnt] = r2;
-        sj[cnt] = jo;
+        sj[cnt] = (size_t)j * stride;
         cnt += r2 < rad2; /* the list never holds i itself */
     }
     for (size_t p = 0; p < cnt; ++p) {
