@@ -61,6 +61,17 @@ double ry_corr_w(const ry_corr *c, const ry_kernel *k, const double *xi, const d
 void ry_corr_grad_w(const ry_corr *c, const ry_kernel *k, const double *xi, const double *xj,
                     double *g);
 
+/* Gradient weights that reproduce quadratic fields (an extension beyond the seed, for beams in
+ * bending, whose displacement is quadratic across the thickness): the kernel-weighted least-
+ * squares fit of f_j - f_i = a . d + d^T H d / 2 (d = x_j - x_i) over the neighbours gives
+ * grad f_i = a = sum_j G_j (f_j - f_i), exact for every quadratic f. G holds dim numbers per
+ * neighbour: G_j = V_j W_ij [M^-1 p(d_j)]_{0..dim-1}, M = sum_j V_j W_ij p p^T, p the
+ * monomials (d, d (x) d) scaled by 1/h. RY_ERR_RANGE when M is singular (too few or coplanar
+ * neighbours: 5 are needed in 2D, 9 in 3D). */
+ry_status ry_corr_quadratic_gradient(const ry_kernel *k, const double *xi, size_t nn,
+                                     const uint32_t *nbr, const double *const x[3],
+                                     const double *vol, double *G, ry_error *err);
+
 /* Interpolates f (one value per particle) at particle i of a particle set: value
  * sum_j V_j W~_ij f_j (self included) and gradient as in the table above. nn neighbours nbr[]
  * (excluding i). Either output may be NULL. */

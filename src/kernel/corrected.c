@@ -167,3 +167,85 @@ ry_status ry_corr_field(ry_correction type, const ry_kernel *k, size_t i, size_t
         for (int a = 0; a < 3; ++a) grad[a] = a < dim ? gr[a] : 0.0;
     return RY_OK;
 }
+
+/* Inverse of an n x n matrix (n <= 9) by Gauss-Jordan elimination with partial pivoting. */
+static int invert_n(int n, double *a, double *inv) {
+    double amax = 0;
+    for (int r = 0; r < n * n; ++r) amax = fmax(amax, fabs(a[r]));
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) inv[n * r + c] = r == c;
+    for (int c = 0; c < n; ++c) {
+        int piv = c;
+        for (int r = c + 1; r < n; ++r)
+            if (fabs(a[n * r + c]) > fabs(a[n * piv + c])) piv = r;
+        if (!(fabs(a[n * piv + c]) > 1e-12 * amax)) return -1;
+        if (piv != c)
+            for (int k = 0; k < n; ++k) {
+                double t = a[n * c + k];
+                a[n * c + k] = a[n * piv + k];
+                a[n * piv + k] = t;
+                t = inv[n * c + k];
+                inv[n * c + k] = inv[n * piv + k];
+                inv[n * piv + k] = t;
+            }
+        const double d = 1.0 / a[n * c + c];
+        for (int k = 0; k < n; ++k) {
+            a[n * c + k] *= d;
+            inv[n * c + k] *= d;
+        }
+        for (int r = 0; r < n; ++r) {
+            if (r == c) continue;
+            const double f = a[n * r + c];
+            if (f == 0) continue;
+            for (int k = 0; k < n; ++k) {
+                a[n * r + k] -= f * a[n * c + k];
+                inv[n * r + k] -= f * inv[n * c + k];
+            }
+        }
+    }
+    return 0;
+}
+
+/* Monomials of d / h: d_a, then d_a d_b / 2 (a == b) or d_a d_b (a < b); returns the count. */
+static int quad_basis(int dim, const double *d, double ih, double *p) {
+    int m = 0;
+    for (int a = 0; a < dim; ++a) p[m++] = d[a] * ih;
+    for (int a = 0; a < dim; ++a)
+        for (int b = a; b < dim; ++b) p[m++] = (a == b ? 0.5 : 1.0) * d[a] * d[b] * ih * ih;
+    return m;
+}
+
+ry_status ry_corr_quadratic_gradient(const ry_kernel *k, const double *xi, size_t nn,
+                                     const uint32_t *nbr, const double *const x[3],
+                                     const double *vol, double *G, ry_error *err) {
+    const int dim = k->dim;
+    const double ih = k->inv_h;
+    double M[81] = {0}, Mi[81], p[9];
+    int nb = 0;
+    for (size_t q = 0; q < nn; ++q) {
+        double xj[3], d[3];
+        point_of(x, dim, nbr[q], xj);
+        double r = separation(dim, xj, xi, d); /* d = x_j - x_i */
+        if (r >= k->radius) continue;
+        const double vw = vol[nbr[q]] * ry_kernel_w(k, r);
+        nb = quad_basis(dim, d, ih, p);
+        for (int a = 0; a < nb; ++a)
+            for (int b = 0; b < nb; ++b) M[nb * a + b] += vw * p[a] * p[b];
+    }
+    RY_CHECK(err, nb > 0 && invert_n(nb, M, Mi) == 0, RY_ERR_RANGE,
+             "corrected SPH (quadratic) at (%g, %g, %g), %zu neighbours: singular moment matrix",
+             xi[0], dim > 1 ? xi[1] : 0.0, dim > 2 ? xi[2] : 0.0, nn);
+    for (size_t q = 0; q < nn; ++q) {
+        double xj[3], d[3];
+        point_of(x, dim, nbr[q], xj);
+        double r = separation(dim, xj, xi, d);
+        const double vw = r < k->radius ? vol[nbr[q]] * ry_kernel_w(k, r) : 0.0;
+        quad_basis(dim, d, ih, p);
+        for (int a = 0; a < dim; ++a) {
+            double t = 0;
+            for (int b = 0; b < nb; ++b) t += Mi[nb * a + b] * p[b];
+            G[(size_t)dim * q + (size_t)a] = vw * t * ih;
+        }
+    }
+    return RY_OK;
+}
