@@ -33,6 +33,24 @@ ry_status ry_beam_geometry(const ry_sim *sim, ry_beam *beam, ry_error *err);
  * scheme `solid` (reference positions). */
 ry_status ry_beam_centreline(const ry_sim *sim, double s, double *pos, double *disp, ry_error *err);
 
+/* Reference solutions for a cantilever of length L clamped at x = 0 (unit intensity: the
+ * deflection is proportional to it). Load types as in the case key scheme.load.type. */
+typedef enum ry_beam_load {
+    RY_BEAM_LOAD_NONE,
+    RY_BEAM_LOAD_END,     /* point load P at x = L */
+    RY_BEAM_LOAD_UNIFORM, /* q = q0 */
+    RY_BEAM_LOAD_LINEAR,  /* q = q0 x / L ("hydrostatic", largest at the free end) */
+    RY_BEAM_LOAD_COSINE   /* q = q0 cos(pi x / (2 L)) */
+} ry_beam_load;
+/* Euler-Bernoulli deflection w(x) = (1/EI) int_0^x (x - s) M(s) ds for intensity 1. */
+double ry_beam_deflection_eb(ry_beam_load load, double L, double EI, double x);
+/* Timoshenko's shear deflection int_0^x V(s) ds / (kappa G A) for intensity 1 (add it to the
+ * Euler-Bernoulli one); kappa = 5/6 for a rectangle. */
+double ry_beam_deflection_shear(ry_beam_load load, double L, double kappa_GA, double x);
+/* Elastica of a cantilever under a dead end load P normal to it, alpha2 = P L^2 / EI: the tip
+ * position (x along the undeformed beam, y along the load) in units of L, and the tip angle. */
+void ry_elastica_end_load(double alpha2, double *x_tip, double *y_tip, double *theta_tip);
+
 /* Relative residual of the last force evaluation of the scheme `solid`:
  * |f_internal + f_external| / |f_external| over the free solid particles (the absolute net force
  * norm when there is no external force); NAN for another scheme. */

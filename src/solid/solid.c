@@ -43,7 +43,10 @@ typedef struct solid {
     double load_q, load_dir[3], damping, residual_tol;
     double *lam, *mu, *E; /* per material (lambda* in plane stress), Young's modulus */
     double hourglass;     /* hourglass-control coefficient alpha */
-    double c_max;         /* fastest wave speed */
+    double c_max;    /* fastest wave speed (of the free particles' materials with relaxation) */
+    double *modulus; /* per material: P-wave modulus lambda + 2 mu */
+    double *mscale;  /* per particle: fictitious-mass factor of dynamic relaxation */
+    double *hgc;     /* per pair: hourglass stiffness (E_i + E_j)/2 V_j W_ij / |X_ij|^2 */
     int f_X[3], f_fext[3], f_u[3], f_psi;
     /* reference neighbour list and per-pair kernel gradients */
     ry_cell_list cells;
@@ -99,7 +102,7 @@ static ry_status read_material(ry_sim *sim, ry_case *c, solid *s, int m, ry_erro
     s->lam[m] = lam;
     s->mu[m] = mu;
     s->E[m] = E;
-    s->c_max = fmax(s->c_max, sqrt((lam + 2 * mu) / sim->mat[m].density));
+    s->modulus[m] = lam + 2 * mu;
     return RY_OK;
 }
 
@@ -258,15 +261,23 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     s->lam = calloc((size_t)sim->nmat, sizeof *s->lam);
     s->mu = calloc((size_t)sim->nmat, sizeof *s->mu);
     s->E = calloc((size_t)sim->nmat, sizeof *s->E);
-    RY_CHECK(err, s->lam && s->mu && s->E, RY_ERR_NOMEM, "out of memory");
+    s->modulus = calloc((size_t)sim->nmat, sizeof *s->modulus);
+    RY_CHECK(err, s->lam && s->mu && s->E && s->modulus, RY_ERR_NOMEM, "out of memory");
     int *used = calloc((size_t)sim->nmat, sizeof *used);
     RY_CHECK(err, used != NULL, RY_ERR_NOMEM, "out of memory");
     for (size_t i = 0; i < ps->n; ++i) used[ps->material[i]] = 1;
     ry_status st = RY_OK;
     for (int m = 0; m < sim->nmat && st == RY_OK; ++m)
         if (used[m]) st = read_material(sim, c, s, m, err);
-    free(used);
     RY_TRY(st);
+    /* Time step from the fastest wave. With dynamic relaxation only the free (solid) particles
+     * count: the ones next to a stiffer clamp get a larger fictitious mass instead. */
+    for (size_t i = 0; i < ps->n; ++i) {
+        const int m = ps->material[i];
+        if (s->relax == RELAX_NONE || ps->kind[i] == RY_KIND_SOLID)
+            s->c_max = fmax(s->c_max, sqrt(s->modulus[m] / sim->mat[m].density));
+    }
+    free(used);
     for (size_t i = 0; i < ps->n; ++i)
         RY_CHECK(err, ps->kind[i] != RY_KIND_FLUID, RY_ERR_INPUT,
                  "%s: the scheme 'solid' takes bodies of kind solid or wall (clamped), not fluid",
@@ -305,6 +316,9 @@ static void solid_free(void *state) {
     free(s->mu);
     free(s->E);
     free(s->F);
+    free(s->modulus);
+    free(s->mscale);
+    free(s->hgc);
     free(s);
 }
 
@@ -324,7 +338,10 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
     s->A = malloc(n * 9 * sizeof *s->A);
     s->r2 = malloc(n * sizeof *s->r2);
     s->F = malloc(n * 9 * sizeof *s->F);
-    RY_CHECK(err, s->G && s->rev && s->vol && s->A && s->r2 && s->F, RY_ERR_NOMEM, "out of memory");
+    s->mscale = malloc(n * sizeof *s->mscale);
+    s->hgc = malloc((npair ? npair : 1) * sizeof *s->hgc);
+    RY_CHECK(err, s->G && s->rev && s->vol && s->A && s->r2 && s->F && s->mscale && s->hgc,
+             RY_ERR_NOMEM, "out of memory");
     for (size_t i = 0; i < n; ++i)
         s->vol[i] = ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
     ry_status st = RY_OK;
@@ -333,6 +350,20 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
         double xi[3] = {0, 0, 0};
         for (int d = 0; d < dim; ++d) xi[d] = X[d][i];
         const size_t o = s->nl.offset[i], nn = s->nl.offset[i + 1] - o;
+        const int mi = ps->material[i];
+        double ms = 1.0;
+        for (size_t q = o; q < o + nn; ++q) {
+            const uint32_t j = s->nl.j[q];
+            const int mj = ps->material[j];
+            double R2 = 0;
+            for (int d = 0; d < dim; ++d) R2 += (X[d][j] - xi[d]) * (X[d][j] - xi[d]);
+            const double R = sqrt(R2);
+            s->hgc[q] = R > 0 && R < k->radius
+                            ? 0.5 * (s->E[mi] + s->E[mj]) * s->vol[j] * ry_kernel_w(k, R) / R2
+                            : 0.0;
+            if (s->relax != RELAX_NONE) ms = fmax(ms, s->modulus[mj] / s->modulus[mi]);
+        }
+        s->mscale[i] = ms;
         for (size_t q = o; q < o + nn; ++q) { /* reverse pair: i in the sorted list of j */
             const uint32_t j = s->nl.j[q];
             size_t lo = s->nl.offset[j], hi = s->nl.offset[j + 1];
@@ -452,7 +483,6 @@ static void forces(ry_sim *sim, solid *s) {
         double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
         const double *Ai = s->A + 9 * i, *Fi = s->F + 9 * i;
         const double vi = s->vol[i];
-        const double Ei = s->E[ps->material[i]];
         for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
             const size_t j = s->nl.j[q];
             const double *gij = s->G + q * (size_t)dim, *gji = s->G + s->rev[q] * (size_t)dim;
@@ -466,16 +496,9 @@ static void forces(ry_sim *sim, solid *s) {
             }
             if (hg > 0) {
                 /* e_ij = x_j - x_i - (F_i + F_j)/2 (X_j - X_i) */
-                const double *Fj = s->F + 9 * j;
-                double Xji[3], R2 = 0;
-                for (int a = 0; a < dim; ++a) {
-                    Xji[a] = X[a][j] - X[a][i];
-                    R2 += Xji[a] * Xji[a];
-                }
-                const double R = sqrt(R2);
-                if (R >= sim->kernel.radius) continue;
-                const double cij =
-                    0.5 * (Ei + s->E[ps->material[j]]) * vj * ry_kernel_w(&sim->kernel, R) / R2;
+                const double *Fj = s->F + 9 * j, cij = s->hgc[q];
+                double Xji[3];
+                for (int a = 0; a < dim; ++a) Xji[a] = X[a][j] - X[a][i];
                 for (int a = 0; a < dim; ++a) {
                     double e = x[a][j] - x[a][i];
                     for (int b = 0; b < dim; ++b)
@@ -488,7 +511,7 @@ static void forces(ry_sim *sim, solid *s) {
         double r2 = 0;
         for (int a = 0; a < dim; ++a) {
             double ft = f[a] + vi * hg * fh[a] + ps->f[s->f_fext[a]][i] + m * sim->gravity[a];
-            acc[a][i] = ft / m;
+            acc[a][i] = ft / (m * s->mscale[i]);
             r2 += ft * ft;
         }
         s->r2[i] = r2;
@@ -521,14 +544,15 @@ static ry_status solid_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     return RY_OK;
 }
 
-static double kinetic_energy(const ry_sim *sim) {
+/* Kinetic energy of the solid particles; with mscale, of the fictitious masses. */
+static double kinetic_energy(const ry_sim *sim, const double *mscale) {
     const ry_particles *ps = &sim->ps;
     double e = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_SOLID) continue;
         double v2 = 0;
         for (int d = 0; d < sim->dim; ++d) v2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
-        e += 0.5 * ps->f[RY_F_MASS][i] * v2;
+        e += 0.5 * ps->f[RY_F_MASS][i] * (mscale ? mscale[i] : 1.0) * v2;
     }
     return e;
 }
@@ -550,7 +574,7 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         }
     }
     if (s->relax == RELAX_KINETIC) {
-        double ke = kinetic_energy(sim);
+        double ke = kinetic_energy(sim, s->mscale);
         if (ke < s->ke_prev) { /* past a maximum of the kinetic energy: stop everything */
             for (size_t i = 0; i < n; ++i)
                 for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][i] = 0;
@@ -613,7 +637,7 @@ static ry_status probe_residual(const ry_sim *sim, double *v, ry_error *err) {
 }
 static ry_status probe_solid_ke(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
-    *v = kinetic_energy(sim);
+    *v = kinetic_energy(sim, NULL);
     return RY_OK;
 }
 static ry_status probe_strain_energy(const ry_sim *sim, double *v, ry_error *err) {
