@@ -28,22 +28,22 @@ static const double beam_t = 0.05, beam_E = 96000.0, beam_nu = 0.3;
 static ry_status run_beam(const char *root, const char *out, int ki, int n, const char *load,
                           double q, double *w_half, double *w_tip, double *u_tip, double *prof_x,
                           double *prof_w, int nprof, ry_error *err) {
-    char cpath[4096], odir[4096], sp[64], kt[64], kh[64], lo[96], lt[64], li[64];
+    char cpath[4096], odir[4096], sp[64], kt[64], kh[64], lo[96], hi[96], lt[64], li[64];
     const double dx = beam_t / n;
-    const int layers =
-        (int)ceil(khdx[ki] * ry_kernel_kappa(ry_kernel_type_from_name(kname[ki]))) + 1;
+
     snprintf(cpath, sizeof cpath, "%s/cases/cantilever.yaml", root);
     snprintf(odir, sizeof odir, "%s/cantilever_%s_%s_t%d_q%g", out, kname[ki], load, n, q);
     snprintf(sp, sizeof sp, "spacing=%.17g", dx);
     snprintf(kt, sizeof kt, "kernel.type=%s", kname[ki]);
     snprintf(kh, sizeof kh, "kernel.h_over_dx=%g", khdx[ki]);
-    snprintf(lo, sizeof lo, "bodies[1].lo=[%.17g, %.17g]", -layers * dx, -0.5 * beam_t);
+    snprintf(lo, sizeof lo, "bodies[1].lo=[%.17g, %.17g]", -0.5 * dx, -0.5 * beam_t);
+    snprintf(hi, sizeof hi, "bodies[1].hi=[%.17g, %.17g]", 0.5 * dx, 0.5 * beam_t);
     snprintf(lt, sizeof lt, "scheme.load.type=%s", load);
     snprintf(li, sizeof li, "scheme.load.intensity=%.17g", q);
-    const char *sets[] = {sp, kt, kh, lo, lt, li, "output.vtk=false"};
+    const char *sets[] = {sp, kt, kh, lo, hi, lt, li, "output.vtk=false"};
     ry_sim sim;
     ry_run_stats stats;
-    RY_TRY(ry_run_case_file(cpath, 7, sets, odir, &sim, &stats, err));
+    RY_TRY(ry_run_case_file(cpath, 8, sets, odir, &sim, &stats, err));
     ry_beam b;
     double d[3];
     ry_status st = ry_beam_geometry(&sim, &b, err);

@@ -14,11 +14,15 @@
  *                   stored energy U = sum_i V_i S_i : E_i / 2: momentum and energy conserving)
  *   motion          m_i dv_i/dt = f_i + f_ext,i + m_i g, symplectic Euler (kick, then drift)
  *
- * Particles of kind wall are clamped: they keep their initial position and zero velocity, and
- * take part in the sums (their stress included). Loads are body forces per particle (see
- * load_forces). Static solutions by dynamic relaxation: kinetic damping (all velocities set to
- * zero whenever the kinetic energy passes a maximum) or viscous damping -c v; the run ends when
- * the relative residual |f + f_ext| / |f_ext| drops below scheme.residual.
+ * Particles of kind wall are clamped: they keep their initial position and zero velocity. With
+ * scheme.clamp: face (the default) they hold no energy and only supply u = 0 to the gradient fits
+ * of their neighbours; they should form one column on the clamped face (x = 0 of a beam), so that
+ * no fit straddles the kink between the rigid clamp and the bent beam. With clamp: block they are
+ * a block of the elastic material held fixed, at least a kernel radius deep, stress included
+ * (measured: the root then yields as if the beam were about one spacing longer). Loads are body
+ * forces per particle (see load_forces). Static solutions by dynamic relaxation: kinetic damping
+ * (all velocities set to zero whenever the kinetic energy passes a maximum) or viscous damping -c
+ * v; the run ends when the relative residual |f + f_ext| / |f_ext| drops below scheme.residual.
  *
  * Time step: dt = CFL h / c, c = sqrt((lambda + 2 mu) / rho0), the fastest (P-) wave speed. */
 #include <math.h>
@@ -32,14 +36,16 @@ enum { LOAD_NONE, LOAD_END, LOAD_UNIFORM, LOAD_LINEAR, LOAD_COSINE };
 enum { RELAX_NONE, RELAX_KINETIC, RELAX_VISCOUS };
 enum { PLANE_STRESS, PLANE_STRAIN };
 enum { CORR_NONE, CORR_LINEAR, CORR_QUADRATIC };
+enum { CLAMP_FACE, CLAMP_BLOCK };
 
 static const char *const load_names[] = {"none", "end", "uniform", "linear", "cosine", NULL};
 static const char *const relax_names[] = {"none", "kinetic", "viscous", NULL};
 static const char *const plane_names[] = {"stress", "strain", NULL};
 static const char *const corr_names[] = {"none", "linear", "quadratic", NULL};
+static const char *const clamp_names[] = {"face", "block", NULL};
 
 typedef struct solid {
-    int correction, plane, load, relax;
+    int correction, plane, load, relax, clamp;
     double load_q, load_dir[3], damping, residual_tol;
     double *lam, *mu, *E; /* per material (lambda* in plane stress), Young's modulus */
     double hourglass;     /* hourglass-control coefficient alpha */
@@ -234,6 +240,7 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
              "%s: key 'scheme.formulation': expected total_lagrangian, got '%s'",
              ry_case_where(c, "scheme.formulation", where, sizeof where), form);
     RY_TRY(ry_case_choice(c, "scheme.correction", "quadratic", corr_names, &s->correction, err));
+    RY_TRY(ry_case_choice(c, "scheme.clamp", "face", clamp_names, &s->clamp, err));
     double hg = 0.1;
     RY_TRY(ry_case_double(c, "scheme.hourglass", &hg, 0.0, 100.0, &s->hourglass, err));
     if (sim->dim == 2)
@@ -448,6 +455,10 @@ static void stresses(ry_sim *sim, solid *s) {
                 for (int c = 0; c < dim; ++c) t += F[3 * a + c] * S[3 * c + b];
                 P[3 * a + b] = t;
             }
+        if (s->clamp == CLAMP_FACE && ps->kind[i] != RY_KIND_SOLID) { /* no energy */
+            memset(P, 0, sizeof P);
+            psi = 0;
+        }
         memcpy(s->F + 9 * i, F, sizeof F);
         memcpy(s->A + 9 * i, P, sizeof P);
         /* Cauchy stress sigma = P F^T / J for output: pressure -tr(sigma)/dim, density rho0/J */

@@ -22,23 +22,25 @@ static char root[2048], tmpdir[256];
 
 static const double t_beam = 0.05, E_beam = 96000.0, nu_beam = 0.3;
 
-/* Runs cases/cantilever.yaml with overrides (plus the clamp depth for the spacing) and keeps
- * the final state. */
+/* Runs cases/cantilever.yaml with overrides (plus the clamp column on the root face for the
+ * spacing) and keeps the final state. */
 static void run_beam(int n_thick, int nset, const char *const *sets, const char *sub, ry_sim *sim) {
-    char cp[4096], od[512], sp[64], lo[96];
+    char cp[4096], od[512], sp[64], lo[96], hi[96];
     const char *all[16];
     const double dx = t_beam / n_thick;
     snprintf(cp, sizeof cp, "%s/cases/cantilever.yaml", root);
     snprintf(od, sizeof od, "%s/%s", tmpdir, sub);
     snprintf(sp, sizeof sp, "spacing=%.17g", dx);
-    snprintf(lo, sizeof lo, "bodies[1].lo=[%.17g, %.17g]", -4 * dx, -0.5 * t_beam);
+    snprintf(lo, sizeof lo, "bodies[1].lo=[%.17g, %.17g]", -0.5 * dx, -0.5 * t_beam);
+    snprintf(hi, sizeof hi, "bodies[1].hi=[%.17g, %.17g]", 0.5 * dx, 0.5 * t_beam);
     all[0] = sp;
     all[1] = lo;
-    all[2] = "output.vtk=false";
-    for (int i = 0; i < nset; ++i) all[3 + i] = sets[i];
+    all[2] = hi;
+    all[3] = "output.vtk=false";
+    for (int i = 0; i < nset; ++i) all[4 + i] = sets[i];
     ry_run_stats stats;
     ry_error err = {0};
-    ry_status st = ry_run_case_file(cp, 3 + nset, all, od, sim, &stats, &err);
+    ry_status st = ry_run_case_file(cp, 4 + nset, all, od, sim, &stats, &err);
     if (st != RY_OK) fprintf(stderr, "%s\n", err.msg);
     assert_int_equal(st, RY_OK);
 }
