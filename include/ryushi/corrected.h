@@ -67,10 +67,12 @@ void ry_corr_grad_w(const ry_corr *c, const ry_kernel *k, const double *xi, cons
  * grad f_i = a = sum_j G_j (f_j - f_i), exact for every quadratic f. G holds dim numbers per
  * neighbour: G_j = V_j W_ij [M^-1 p(d_j)]_{0..dim-1}, M = sum_j V_j W_ij p p^T, p the
  * monomials (d, d (x) d) scaled by 1/h. RY_ERR_RANGE when M is singular (too few or coplanar
- * neighbours: 5 are needed in 2D, 9 in 3D). */
+ * neighbours: 5 are needed in 2D, 9 in 3D). H (may be NULL) receives dim x dim numbers per
+ * neighbour, the weights of the second derivatives of the same fit: d_a d_b f_i =
+ * sum_j H_j[a][b] (f_j - f_i), exact for quadratic f. */
 ry_status ry_corr_quadratic_gradient(const ry_kernel *k, const double *xi, size_t nn,
                                      const uint32_t *nbr, const double *const x[3],
-                                     const double *vol, double *G, ry_error *err);
+                                     const double *vol, double *G, double *H, ry_error *err);
 
 /* Interpolates f (one value per particle) at particle i of a particle set: value
  * sum_j V_j W~_ij f_j (self included) and gradient as in the table above. nn neighbours nbr[]

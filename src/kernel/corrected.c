@@ -217,7 +217,7 @@ static int quad_basis(int dim, const double *d, double ih, double *p) {
 
 ry_status ry_corr_quadratic_gradient(const ry_kernel *k, const double *xi, size_t nn,
                                      const uint32_t *nbr, const double *const x[3],
-                                     const double *vol, double *G, ry_error *err) {
+                                     const double *vol, double *G, double *H, ry_error *err) {
     const int dim = k->dim;
     const double ih = k->inv_h;
     double M[81] = {0}, Mi[81], p[9];
@@ -246,6 +246,15 @@ ry_status ry_corr_quadratic_gradient(const ry_kernel *k, const double *xi, size_
             for (int b = 0; b < nb; ++b) t += Mi[nb * a + b] * p[b];
             G[(size_t)dim * q + (size_t)a] = vw * t * ih;
         }
+        if (!H) continue;
+        double *Hq = H + (size_t)dim * (size_t)dim * q;
+        int m = dim;
+        for (int a = 0; a < dim; ++a)
+            for (int b = a; b < dim; ++b, ++m) {
+                double t = 0;
+                for (int c = 0; c < nb; ++c) t += Mi[nb * m + c] * p[c];
+                Hq[dim * a + b] = Hq[dim * b + a] = vw * t * ih * ih;
+            }
     }
     return RY_OK;
 }

@@ -387,7 +387,7 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
         ry_status si = RY_OK;
         if (s->correction == CORR_QUADRATIC) {
             si = ry_corr_quadratic_gradient(k, xi, nn, s->nl.j + o, X, s->vol,
-                                            s->G + (size_t)dim * o, &e1);
+                                            s->G + (size_t)dim * o, NULL, &e1);
         } else {
             ry_corr cr;
             si = ry_corr_build(
