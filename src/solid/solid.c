@@ -37,15 +37,17 @@ enum { RELAX_NONE, RELAX_KINETIC, RELAX_VISCOUS };
 enum { PLANE_STRESS, PLANE_STRAIN };
 enum { CORR_NONE, CORR_LINEAR, CORR_QUADRATIC };
 enum { CLAMP_FACE, CLAMP_BLOCK };
+enum { INTEGRATION_NODAL, INTEGRATION_GRADIENT };
 
 static const char *const load_names[] = {"none", "end", "uniform", "linear", "cosine", NULL};
 static const char *const relax_names[] = {"none", "kinetic", "viscous", NULL};
 static const char *const plane_names[] = {"stress", "strain", NULL};
 static const char *const corr_names[] = {"none", "linear", "quadratic", NULL};
 static const char *const clamp_names[] = {"face", "block", NULL};
+static const char *const integration_names[] = {"nodal", "gradient", NULL};
 
 typedef struct solid {
-    int correction, plane, load, relax, clamp;
+    int correction, plane, load, relax, clamp, integration;
     double load_q, load_dir[3], damping, residual_tol;
     double *lam, *mu, *E; /* per material (lambda* in plane stress), Young's modulus */
     double hourglass;     /* hourglass-control coefficient alpha */
@@ -58,6 +60,8 @@ typedef struct solid {
     ry_cell_list cells;
     ry_nlist nl;
     double *G;   /* dim per pair: gradient weights, grad f_i = sum_j G_ij (f_j - f_i) */
+    double *H;   /* dim^2 per pair: second-derivative weights (integration: gradient) */
+    double *Q;   /* 27 per particle: Q_k = (cell^2/12) F T_k, the strain-gradient stresses */
     size_t *rev; /* per pair ij: the index of the pair ji */
     double *vol; /* reference volume per particle */
     double *A;   /* 9 per particle: first Piola-Kirchhoff stress P_i */
@@ -241,6 +245,13 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
              ry_case_where(c, "scheme.formulation", where, sizeof where), form);
     RY_TRY(ry_case_choice(c, "scheme.correction", "quadratic", corr_names, &s->correction, err));
     RY_TRY(ry_case_choice(c, "scheme.clamp", "face", clamp_names, &s->clamp, err));
+    RY_TRY(ry_case_choice(c, "scheme.integration",
+                          s->correction == CORR_QUADRATIC ? "gradient" : "nodal", integration_names,
+                          &s->integration, err));
+    RY_CHECK(err, s->integration == INTEGRATION_NODAL || s->correction == CORR_QUADRATIC,
+             RY_ERR_INPUT,
+             "%s: key 'scheme.integration': gradient needs scheme.correction: quadratic",
+             ry_case_where(c, "scheme.integration", where, sizeof where));
     double hg = 0.1;
     RY_TRY(ry_case_double(c, "scheme.hourglass", &hg, 0.0, 100.0, &s->hourglass, err));
     if (sim->dim == 2)
@@ -315,6 +326,8 @@ static void solid_free(void *state) {
     ry_cells_free(&s->cells);
     ry_nlist_free(&s->nl);
     free(s->G);
+    free(s->H);
+    free(s->Q);
     free(s->rev);
     free(s->vol);
     free(s->A);
@@ -340,6 +353,11 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
     RY_TRY(ry_nlist_build_cells(&s->nl, &s->cells, &sim->box, k->radius, n, X, err));
     const size_t npair = s->nl.offset[n];
     s->G = malloc((npair ? npair : 1) * (size_t)dim * sizeof *s->G);
+    if (s->integration == INTEGRATION_GRADIENT) {
+        s->H = malloc((npair ? npair : 1) * (size_t)(dim * dim) * sizeof *s->H);
+        s->Q = calloc(n * 27, sizeof *s->Q);
+        RY_CHECK(err, s->H && s->Q, RY_ERR_NOMEM, "out of memory");
+    }
     s->rev = malloc((npair ? npair : 1) * sizeof *s->rev);
     s->vol = malloc(n * sizeof *s->vol);
     s->A = malloc(n * 9 * sizeof *s->A);
@@ -387,7 +405,8 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
         ry_status si = RY_OK;
         if (s->correction == CORR_QUADRATIC) {
             si = ry_corr_quadratic_gradient(k, xi, nn, s->nl.j + o, X, s->vol,
-                                            s->G + (size_t)dim * o, NULL, &e1);
+                                            s->G + (size_t)dim * o,
+                                            s->H ? s->H + (size_t)(dim * dim) * o : NULL, &e1);
         } else {
             ry_corr cr;
             si = ry_corr_build(
@@ -417,6 +436,58 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
 }
 
 /* ---- forces ------------------------------------------------------------------------------- */
+
+/* The strain-gradient term of the cell energy: with the strain varying linearly over the
+ * particle's cell (a square or cube of side c, c^d = V_i), the cell's energy is
+ * V_i (Psi(E_i) + (c^2/24) sum_k dE_k : C : dE_k), dE_k = d E / d X_k = sym(F^T D_k), D_k = d F /
+ * d X_k from the second-derivative weights of the quadratic fit. Without it (nodal integration)
+ * a beam of n particles across its thickness bends with I (1 - 1/n^2) instead of I. Adds
+ * P' = (c^2/12) sum_k D_k T_k (T_k = C : dE_k) to the first Piola-Kirchhoff stress and stores
+ * the stresses Q_k = (c^2/12) F T_k that act through the second-derivative weights. */
+static void strain_gradient(ry_sim *sim, solid *s, size_t i, const double *F, double *psi) {
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
+    const double c12 = pow(s->vol[i], 2.0 / dim) / 12.0;
+    const int m = ps->material[i];
+    double D[3][9] = {{0}};
+    for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
+        const size_t j = s->nl.j[q];
+        const double *h = s->H + q * (size_t)(dim * dim);
+        for (int a = 0; a < dim; ++a) {
+            const double dxa = x[a][j] - x[a][i];
+            for (int k = 0; k < dim; ++k)
+                for (int b = 0; b < dim; ++b) D[k][3 * a + b] += dxa * h[dim * k + b];
+        }
+    }
+    double *P = s->A + 9 * i, *Q = s->Q + 27 * i;
+    for (int k = 0; k < dim; ++k) {
+        double dE[9] = {0}, T[9] = {0}, tr = 0;
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                double t = 0;
+                for (int c = 0; c < dim; ++c)
+                    t += F[3 * c + a] * D[k][3 * c + b] + F[3 * c + b] * D[k][3 * c + a];
+                dE[3 * a + b] = 0.5 * t;
+            }
+        for (int a = 0; a < dim; ++a) tr += dE[4 * a];
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                T[3 * a + b] = 2 * s->mu[m] * dE[3 * a + b] + (a == b ? s->lam[m] * tr : 0.0);
+                *psi += 0.5 * c12 * T[3 * a + b] * dE[3 * a + b];
+            }
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                double dt = 0, ft = 0;
+                for (int c = 0; c < dim; ++c) {
+                    dt += D[k][3 * a + c] * T[3 * c + b];
+                    ft += F[3 * a + c] * T[3 * c + b];
+                }
+                P[3 * a + b] += c12 * dt;
+                Q[9 * k + 3 * a + b] = c12 * ft;
+            }
+    }
+}
 
 /* Pass 1: F_i, stress, A_i = P_i L_i for every particle (clamped ones included). */
 static void stresses(ry_sim *sim, solid *s) {
@@ -455,12 +526,14 @@ static void stresses(ry_sim *sim, solid *s) {
                 for (int c = 0; c < dim; ++c) t += F[3 * a + c] * S[3 * c + b];
                 P[3 * a + b] = t;
             }
-        if (s->clamp == CLAMP_FACE && ps->kind[i] != RY_KIND_SOLID) { /* no energy */
+        const int no_energy = s->clamp == CLAMP_FACE && ps->kind[i] != RY_KIND_SOLID;
+        if (no_energy) {
             memset(P, 0, sizeof P);
             psi = 0;
         }
         memcpy(s->F + 9 * i, F, sizeof F);
         memcpy(s->A + 9 * i, P, sizeof P);
+        if (s->H && !no_energy) strain_gradient(sim, s, i, F, &psi);
         /* Cauchy stress sigma = P F^T / J for output: pressure -tr(sigma)/dim, density rho0/J */
         double J = dim == 2
                        ? F[0] * F[4] - F[1] * F[3]
@@ -504,6 +577,19 @@ static void forces(ry_sim *sim, solid *s) {
                 for (int b = 0; b < dim; ++b)
                     t += vi * Ai[3 * a + b] * gij[b] - vj * Aj[3 * a + b] * gji[b];
                 f[a] += t;
+            }
+            if (s->H) { /* strain-gradient stresses through the second-derivative weights */
+                const double *hij = s->H + q * (size_t)(dim * dim);
+                const double *hji = s->H + s->rev[q] * (size_t)(dim * dim);
+                const double *Qi = s->Q + 27 * i, *Qj = s->Q + 27 * j;
+                for (int a = 0; a < dim; ++a) {
+                    double t = 0;
+                    for (int k = 0; k < dim; ++k)
+                        for (int b = 0; b < dim; ++b)
+                            t += vi * Qi[9 * k + 3 * a + b] * hij[dim * k + b] -
+                                 vj * Qj[9 * k + 3 * a + b] * hji[dim * k + b];
+                    f[a] += t;
+                }
             }
             if (hg > 0) {
                 /* e_ij = x_j - x_i - (F_i + F_j)/2 (X_j - X_i) */
