@@ -39,6 +39,12 @@ enum { CORR_NONE, CORR_LINEAR, CORR_QUADRATIC };
 enum { CLAMP_FACE, CLAMP_BLOCK };
 enum { INTEGRATION_NODAL, INTEGRATION_GRADIENT };
 
+/* Loops over fewer particles run on one thread: a step of a small beam takes microseconds, less
+ * than a thread barrier on a busy machine. (Every particle sums only into itself, so the
+ * results do not depend on this.) */
+enum { RY_SOLID_PARALLEL_MIN = 8192 };
+#define RY_SOLID_INLINE static inline __attribute__((always_inline))
+
 static const char *const load_names[] = {"none", "end", "uniform", "linear", "cosine", NULL};
 static const char *const relax_names[] = {"none", "kinetic", "viscous", NULL};
 static const char *const plane_names[] = {"stress", "strain", NULL};
@@ -370,7 +376,7 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
     for (size_t i = 0; i < n; ++i)
         s->vol[i] = ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
     ry_status st = RY_OK;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
     for (size_t i = 0; i < n; ++i) {
         double xi[3] = {0, 0, 0};
         for (int d = 0; d < dim; ++d) xi[d] = X[d][i];
@@ -444,9 +450,9 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
  * a beam of n particles across its thickness bends with I (1 - 1/n^2) instead of I. Adds
  * P' = (c^2/12) sum_k D_k T_k (T_k = C : dE_k) to the first Piola-Kirchhoff stress and stores
  * the stresses Q_k = (c^2/12) F T_k that act through the second-derivative weights. */
-static void strain_gradient(ry_sim *sim, solid *s, size_t i, const double *F, double *psi) {
+RY_SOLID_INLINE void strain_gradient(ry_sim *sim, solid *s, size_t i, const double *F, double *psi,
+                                     const int dim) {
     const ry_particles *ps = &sim->ps;
-    const int dim = sim->dim;
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
     const double c12 = pow(s->vol[i], 2.0 / dim) / 12.0;
     const int m = ps->material[i];
@@ -490,12 +496,11 @@ static void strain_gradient(ry_sim *sim, solid *s, size_t i, const double *F, do
 }
 
 /* Pass 1: F_i, stress, A_i = P_i L_i for every particle (clamped ones included). */
-static void stresses(ry_sim *sim, solid *s) {
+RY_SOLID_INLINE void stresses_dim(ry_sim *sim, solid *s, const int dim) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    const int dim = sim->dim;
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
     for (size_t i = 0; i < n; ++i) {
         double F[9] = {0}, E[9] = {0}, S[9] = {0}, P[9] = {0};
         for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
@@ -533,7 +538,7 @@ static void stresses(ry_sim *sim, solid *s) {
         }
         memcpy(s->F + 9 * i, F, sizeof F);
         memcpy(s->A + 9 * i, P, sizeof P);
-        if (s->H && !no_energy) strain_gradient(sim, s, i, F, &psi);
+        if (s->H && !no_energy) strain_gradient(sim, s, i, F, &psi, dim);
         /* Cauchy stress sigma = P F^T / J for output: pressure -tr(sigma)/dim, density rho0/J */
         double J = dim == 2
                        ? F[0] * F[4] - F[1] * F[3]
@@ -549,15 +554,14 @@ static void stresses(ry_sim *sim, solid *s) {
 }
 
 /* Pass 2: accelerations of the free particles and the residual. */
-static void forces(ry_sim *sim, solid *s) {
+RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, const int dim) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    const int dim = sim->dim;
     double *acc[3] = {ps->f[RY_F_AX], ps->f[RY_F_AY], dim > 2 ? ps->f[RY_F_AZ] : NULL};
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
     const double *X[3] = {ps->f[s->f_X[0]], ps->f[s->f_X[1]], dim > 2 ? ps->f[s->f_X[2]] : NULL};
     const double hg = s->hourglass;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_SOLID) {
             for (int d = 0; d < dim; ++d) acc[d][i] = 0;
@@ -626,6 +630,20 @@ static void forces(ry_sim *sim, solid *s) {
     s->residual = ext > 0 ? sqrt(net / ext) : sqrt(net);
 }
 
+/* The pair loops with the dimension a compile-time constant. */
+static void stresses(ry_sim *sim, solid *s) {
+    if (sim->dim == 2)
+        stresses_dim(sim, s, 2);
+    else
+        stresses_dim(sim, s, 3);
+}
+static void forces(ry_sim *sim, solid *s) {
+    if (sim->dim == 2)
+        forces_dim(sim, s, 2);
+    else
+        forces_dim(sim, s, 3);
+}
+
 static ry_status evaluate(ry_sim *sim, solid *s, ry_error *err) {
     if (!s->built) RY_TRY(build_reference(sim, s, err));
     stresses(sim, s);
@@ -662,7 +680,7 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     if (!s->have_forces) RY_TRY(evaluate(sim, s, err));
     const double keep = s->relax == RELAX_VISCOUS ? (1 - 0.5 * s->damping * dt) : 1.0;
     const double gain = s->relax == RELAX_VISCOUS ? 1.0 / (1 + 0.5 * s->damping * dt) : 1.0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_SOLID) continue;
         for (int d = 0; d < dim; ++d) {
@@ -680,7 +698,7 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         }
         s->ke_prev = ke;
     }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_SOLID) continue;
         for (int d = 0; d < dim; ++d) {
