@@ -79,6 +79,8 @@ struct ry_sim {
     double cfl;    /* Courant number for the scheme's time-step limits */
     double dt_max; /* upper bound on dt (0: none) */
     long step, max_steps;
+    int finished; /* set by a scheme when the run has reached its goal (e.g. a static solution
+                     converged to its residual): the time loop ends after that step */
 
     /* neighbour search */
     ry_cell_list cells;

@@ -5,5 +5,7 @@
 int ry_cli_bench(int argc, char **argv);
 int ry_cli_plot(int argc, char **argv);
 int ry_cli_validate(int argc, char **argv);
+/* The cantilever validation (validate_solid.c); adds its failed checks to *failures. */
+int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int *failures);
 
 #endif

@@ -314,12 +314,17 @@ int ry_cli_validate(int argc, char **argv) {
         return 3;
     }
     int all = strcmp(what, "all") == 0;
-    if (!all && strcmp(what, "dam_break") != 0 && strcmp(what, "cavity") != 0) {
-        fprintf(stderr, "ryushi: validate: expected dam_break, cavity or all, got '%s'\n", what);
+    if (!all && strcmp(what, "dam_break") != 0 && strcmp(what, "cavity") != 0 &&
+        strcmp(what, "cantilever") != 0) {
+        fprintf(stderr,
+                "ryushi: validate: expected dam_break, cavity, cantilever or all, got '%s'\n",
+                what);
         return 2;
     }
     if (all || strcmp(what, "dam_break") == 0) validate_dam_break(&v);
     if (all || strcmp(what, "cavity") == 0) validate_cavity(&v);
+    if (all || strcmp(what, "cantilever") == 0)
+        ry_cli_validate_cantilever(v.root, v.out, v.quick, &v.failures);
     printf("validate: %s (%d failure(s)); output in %s\n", v.failures ? "FAILED" : "passed",
            v.failures, v.out);
     return v.failures ? 1 : 0;

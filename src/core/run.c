@@ -15,7 +15,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         sim->next_output = sim->t + sim->output_interval;
     }
     const double eps = 1e-12 * sim->t_end;
-    while (sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
+    while (sim->t < sim->t_end - eps && sim->step < sim->max_steps && !sim->finished) {
         if (hooks && hooks->stop && *hooks->stop) {
             st = ry_error_set(err, RY_ERR_INTERRUPTED,
                               "interrupted at step %ld, t = %.6g s; state written", sim->step,

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "ryushi/sim.h"
+#include "ryushi/solid.h"
 #include "sph/wcsph.h"
 
 /* "static": particles stay where they are (for setting up and inspecting geometry). */
@@ -34,7 +35,8 @@ static const ry_scheme_type scheme_static = {
     static_init, static_dt,
     static_step, static_free};
 
-static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &scheme_static, NULL};
+static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &ry_scheme_solid,
+                                                    &scheme_static, NULL};
 
 const ry_scheme_type *const *ry_schemes(void) {
     return all_schemes;

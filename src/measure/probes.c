@@ -3,6 +3,7 @@
 #include <stdlib.h>
 
 #include "ryushi/sim.h"
+#include "ryushi/solid.h"
 
 static ry_status probe_mass(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
@@ -136,8 +137,18 @@ static const ry_probe p_front = {"front_x", "surge front position [m] (leading e
 static const ry_probe p_in_wall = {
     "in_wall", "fluid particles inside a wall (within dx/2 of a wall particle in every direction)",
     probe_in_wall};
-static const ry_probe *const all_probes[] = {&p_mass,  &p_kin,     &p_vmax, &p_out,
-                                             &p_front, &p_in_wall, NULL};
+static const ry_probe *const all_probes[] = {&p_mass,
+                                             &p_kin,
+                                             &p_vmax,
+                                             &p_out,
+                                             &p_front,
+                                             &p_in_wall,
+                                             &ry_probe_tip_deflection,
+                                             &ry_probe_tip_axial,
+                                             &ry_probe_residual,
+                                             &ry_probe_solid_kinetic_energy,
+                                             &ry_probe_strain_energy,
+                                             NULL};
 
 const ry_probe *const *ry_probes(void) {
     return all_probes;

@@ -1,0 +1,59 @@
+/* ryushi — SPH for elastic solids (seed 000, SPEC section 2): the scheme `solid` and what
+ * measures its beams.
+ *
+ * Beams lie along x: the solid particles (kind solid) form the beam, the particles of kind wall
+ * are clamped (fixed at their initial position) and should fill a few layers behind the root so
+ * that the kernel support of the root particles is complete. The beam's root is half a spacing
+ * before its first particle column, its free end half a spacing after the last one; its length
+ * L is the distance between the two and its cross-section A = (solid volume) / L. */
+#ifndef RYUSHI_SOLID_H
+#define RYUSHI_SOLID_H
+
+#include "ryushi/sim.h"
+
+extern const ry_scheme_type ry_scheme_solid;
+
+/* Probes of series.csv for solids (listed by `ryushi probes`). */
+extern const ry_probe ry_probe_tip_deflection, ry_probe_tip_axial, ry_probe_residual,
+    ry_probe_solid_kinetic_energy, ry_probe_strain_energy;
+
+/* Beam geometry of the solid particles: root x, length L, cross-section A, spacing of the
+ * particle columns. RY_ERR_INPUT when there is no solid particle. */
+typedef struct ry_beam {
+    double x_root, length, area;
+    double centre[3]; /* reference centroid of the cross-section (y, z) */
+    int ncol;         /* particle columns along x */
+} ry_beam;
+ry_status ry_beam_geometry(const ry_sim *sim, ry_beam *beam, ry_error *err);
+
+/* Position of the beam's centreline at arc length s from the root (0 <= s <= L): the mean
+ * position of each particle column (by reference x), interpolated linearly between column
+ * centres and extrapolated along the first and last segment to the root and the free end.
+ * disp (may be NULL) receives the displacement from the reference centreline. Needs the
+ * scheme `solid` (reference positions). */
+ry_status ry_beam_centreline(const ry_sim *sim, double s, double *pos, double *disp, ry_error *err);
+
+/* Reference solutions for a cantilever of length L clamped at x = 0 (unit intensity: the
+ * deflection is proportional to it). Load types as in the case key scheme.load.type. */
+typedef enum ry_beam_load {
+    RY_BEAM_LOAD_NONE,
+    RY_BEAM_LOAD_END,     /* point load P at x = L */
+    RY_BEAM_LOAD_UNIFORM, /* q = q0 */
+    RY_BEAM_LOAD_LINEAR,  /* q = q0 x / L ("hydrostatic", largest at the free end) */
+    RY_BEAM_LOAD_COSINE   /* q = q0 cos(pi x / (2 L)) */
+} ry_beam_load;
+/* Euler-Bernoulli deflection w(x) = (1/EI) int_0^x (x - s) M(s) ds for intensity 1. */
+double ry_beam_deflection_eb(ry_beam_load load, double L, double EI, double x);
+/* Timoshenko's shear deflection int_0^x V(s) ds / (kappa G A) for intensity 1 (add it to the
+ * Euler-Bernoulli one); kappa = 5/6 for a rectangle. */
+double ry_beam_deflection_shear(ry_beam_load load, double L, double kappa_GA, double x);
+/* Elastica of a cantilever under a dead end load P normal to it, alpha2 = P L^2 / EI: the tip
+ * position (x along the undeformed beam, y along the load) in units of L, and the tip angle. */
+void ry_elastica_end_load(double alpha2, double *x_tip, double *y_tip, double *theta_tip);
+
+/* Relative residual of the last force evaluation of the scheme `solid`:
+ * |f_internal + f_external| / |f_external| over the free solid particles (the absolute net force
+ * norm when there is no external force); NAN for another scheme. */
+double ry_solid_residual(const ry_sim *sim);
+
+#endif

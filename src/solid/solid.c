@@ -1,0 +1,783 @@
+/* SPH for elastic solids, total-Lagrangian form with corrected kernel gradients (seed 000,
+ * SPEC section 2; docs/solid.md).
+ *
+ * Every quantity refers to the reference (initial) configuration X, in which the neighbour list,
+ * the kernel gradients grad W_ij = grad_X W(|X_i - X_j|) and the volumes V_j = m_j / rho0_j are
+ * computed once:
+ *
+ *   correction      L_i = (sum_j V_j grad W_ij (x) (X_j - X_i))^-1     (seed eq. 10-12,
+ *                   include/ryushi/corrected.h; L_i = I without kernel correction)
+ *   deformation     F_i = sum_j V_j (x_j - x_i) (x) L_i grad W_ij
+ *   material        St Venant-Kirchhoff: E_i = (F_i^T F_i - I)/2, S_i = lambda tr(E_i) I + 2 mu E_i
+ *                   (plane stress in 2D: lambda* = 2 lambda mu / (lambda + 2 mu)), P_i = F_i S_i
+ *   forces          f_i = sum_j V_i V_j (P_i L_i + P_j L_j) grad W_ij  (= -dU/dx_i for the
+ *                   stored energy U = sum_i V_i S_i : E_i / 2: momentum and energy conserving)
+ *   motion          m_i dv_i/dt = f_i + f_ext,i + m_i g, symplectic Euler (kick, then drift)
+ *
+ * Particles of kind wall are clamped: they keep their initial position and zero velocity. With
+ * scheme.clamp: face (the default) they hold no energy and only supply u = 0 to the gradient fits
+ * of their neighbours; they should form one column on the clamped face (x = 0 of a beam), so that
+ * no fit straddles the kink between the rigid clamp and the bent beam. With clamp: block they are
+ * a block of the elastic material held fixed, at least a kernel radius deep, stress included
+ * (measured: the root then yields as if the beam were about one spacing longer). Loads are body
+ * forces per particle (see load_forces). Static solutions by dynamic relaxation: kinetic damping
+ * (all velocities set to zero whenever the kinetic energy passes a maximum) or viscous damping -c
+ * v; the run ends when the relative residual |f + f_ext| / |f_ext| drops below scheme.residual.
+ *
+ * Time step: dt = CFL h / c, c = sqrt((lambda + 2 mu) / rho0), the fastest (P-) wave speed. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ryushi/corrected.h"
+#include "ryushi/solid.h"
+
+enum { LOAD_NONE, LOAD_END, LOAD_UNIFORM, LOAD_LINEAR, LOAD_COSINE };
+enum { RELAX_NONE, RELAX_KINETIC, RELAX_VISCOUS };
+enum { PLANE_STRESS, PLANE_STRAIN };
+enum { CORR_NONE, CORR_LINEAR, CORR_QUADRATIC };
+enum { CLAMP_FACE, CLAMP_BLOCK };
+enum { INTEGRATION_NODAL, INTEGRATION_GRADIENT };
+
+/* Loops over fewer particles run on one thread: a step of a small beam takes microseconds, less
+ * than a thread barrier on a busy machine. (Every particle sums only into itself, so the
+ * results do not depend on this.) */
+enum { RY_SOLID_PARALLEL_MIN = 8192 };
+#define RY_SOLID_INLINE static inline __attribute__((always_inline))
+
+static const char *const load_names[] = {"none", "end", "uniform", "linear", "cosine", NULL};
+static const char *const relax_names[] = {"none", "kinetic", "viscous", NULL};
+static const char *const plane_names[] = {"stress", "strain", NULL};
+static const char *const corr_names[] = {"none", "linear", "quadratic", NULL};
+static const char *const clamp_names[] = {"face", "block", NULL};
+static const char *const integration_names[] = {"nodal", "gradient", NULL};
+
+typedef struct solid {
+    int correction, plane, load, relax, clamp, integration;
+    double load_q, load_dir[3], damping, residual_tol;
+    double *lam, *mu, *E; /* per material (lambda* in plane stress), Young's modulus */
+    double hourglass;     /* hourglass-control coefficient alpha */
+    double c_max;    /* fastest wave speed (of the free particles' materials with relaxation) */
+    double *modulus; /* per material: P-wave modulus lambda + 2 mu */
+    double *mscale;  /* per particle: fictitious-mass factor of dynamic relaxation */
+    double *hgc;     /* per pair: hourglass stiffness (E_i + E_j)/2 V_j W_ij / |X_ij|^2 */
+    int f_X[3], f_fext[3], f_u[3], f_psi;
+    /* reference neighbour list and per-pair kernel gradients */
+    ry_cell_list cells;
+    ry_nlist nl;
+    double *G;   /* dim per pair: gradient weights, grad f_i = sum_j G_ij (f_j - f_i) */
+    double *H;   /* dim^2 per pair: second-derivative weights (integration: gradient) */
+    double *Q;   /* 27 per particle: Q_k = (cell^2/12) F T_k, the strain-gradient stresses */
+    size_t *rev; /* per pair ij: the index of the pair ji */
+    double *vol; /* reference volume per particle */
+    double *A;   /* 9 per particle: first Piola-Kirchhoff stress P_i */
+    double *F;   /* 9 per particle: deformation gradient */
+    double *r2;  /* squared net force per particle */
+    int built, have_forces;
+    double residual, ke_prev;
+    long peaks; /* kinetic-damping resets */
+} solid;
+
+static const solid *solid_state(const ry_sim *sim) {
+    return sim->scheme == &ry_scheme_solid ? sim->scheme_state : NULL;
+}
+
+double ry_solid_residual(const ry_sim *sim) {
+    const solid *s = solid_state(sim);
+    return s ? s->residual : NAN;
+}
+
+/* ---- materials ---------------------------------------------------------------------------- */
+
+static ry_status read_material(ry_sim *sim, ry_case *c, solid *s, int m, ry_error *err) {
+    char k1[96], k2[96], where[256];
+    double E, nu;
+    snprintf(k1, sizeof k1, "materials[%d].youngs_modulus", m);
+    if (ry_case_has(c, k1)) {
+        snprintf(k2, sizeof k2, "materials[%d].poisson_ratio", m);
+        RY_TRY(ry_case_positive(c, k1, NULL, &E, err));
+        RY_TRY(ry_case_double(c, k2, NULL, -0.99, 0.49, &nu, err));
+    } else {
+        double G, K;
+        snprintf(k1, sizeof k1, "materials[%d].shear_modulus", m);
+        snprintf(k2, sizeof k2, "materials[%d].bulk_modulus", m);
+        RY_CHECK(err, ry_case_has(c, k1), RY_ERR_INPUT,
+                 "%s: key 'materials[%d]': a solid material needs youngs_modulus and "
+                 "poisson_ratio, or shear_modulus and bulk_modulus",
+                 ry_case_where(c, k1, where, sizeof where), m);
+        RY_TRY(ry_case_positive(c, k1, NULL, &G, err));
+        RY_TRY(ry_case_positive(c, k2, NULL, &K, err));
+        E = 9 * K * G / (3 * K + G);
+        nu = (3 * K - 2 * G) / (2 * (3 * K + G));
+        RY_CHECK(err, nu <= 0.49, RY_ERR_INPUT,
+                 "%s: key '%s': Poisson's ratio %g from these moduli is too close to 1/2",
+                 ry_case_where(c, k2, where, sizeof where), k2, nu);
+    }
+    double mu = E / (2 * (1 + nu)), lam = E * nu / ((1 + nu) * (1 - 2 * nu));
+    if (sim->dim == 2 && s->plane == PLANE_STRESS) lam = 2 * lam * mu / (lam + 2 * mu);
+    s->lam[m] = lam;
+    s->mu[m] = mu;
+    s->E[m] = E;
+    s->modulus[m] = lam + 2 * mu;
+    return RY_OK;
+}
+
+/* ---- beam geometry and loads -------------------------------------------------------------- */
+
+ry_status ry_beam_geometry(const ry_sim *sim, ry_beam *b, ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    const solid *s = solid_state(sim);
+    const double *X = s ? ps->f[s->f_X[0]] : ps->f[RY_F_X];
+    double xmin = INFINITY, xmax = -INFINITY, vol = 0, c[3] = {0, 0, 0};
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        xmin = fmin(xmin, X[i]);
+        xmax = fmax(xmax, X[i]);
+        double v = ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
+        vol += v;
+        for (int d = 1; d < sim->dim; ++d)
+            c[d] += v * (s ? ps->f[s->f_X[d]][i] : ps->f[RY_F_X + d][i]);
+    }
+    RY_CHECK(err, vol > 0, RY_ERR_INPUT, "beam: no solid particle");
+    memset(b, 0, sizeof *b);
+    b->x_root = xmin - 0.5 * sim->dx;
+    b->length = xmax - xmin + sim->dx;
+    b->area = vol / b->length;
+    for (int d = 1; d < sim->dim; ++d) b->centre[d] = c[d] / vol;
+    b->ncol = (int)lround((xmax - xmin) / sim->dx) + 1;
+    return RY_OK;
+}
+
+/* Column (0 .. ncol-1) of a solid particle by its reference x. */
+static int column_of(const ry_beam *b, double dx, double X) {
+    int k = (int)lround((X - b->x_root) / dx - 0.5);
+    return k < 0 ? 0 : k >= b->ncol ? b->ncol - 1 : k;
+}
+
+ry_status ry_beam_centreline(const ry_sim *sim, double sx, double *pos, double *disp,
+                             ry_error *err) {
+    const solid *s = solid_state(sim);
+    RY_CHECK(err, s != NULL, RY_ERR_INPUT, "beam centreline: needs the scheme 'solid'");
+    ry_beam b;
+    RY_TRY(ry_beam_geometry(sim, &b, err));
+    RY_CHECK(err, b.ncol >= 2, RY_ERR_INPUT, "beam centreline: the beam has a single column");
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    /* the two columns around s (or the nearest two at the ends) */
+    double t = sx / sim->dx - 0.5;
+    int k0 = (int)floor(t);
+    if (k0 < 0) k0 = 0;
+    if (k0 > b.ncol - 2) k0 = b.ncol - 2;
+    double w1 = t - k0, p[2][3] = {{0}}, cnt[2] = {0, 0};
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        int k = column_of(&b, sim->dx, ps->f[s->f_X[0]][i]) - k0;
+        if (k < 0 || k > 1) continue;
+        cnt[k] += 1;
+        for (int d = 0; d < dim; ++d) p[k][d] += ps->f[RY_F_X + d][i];
+    }
+    RY_CHECK(err, cnt[0] > 0 && cnt[1] > 0, RY_ERR_INTERNAL, "beam centreline: empty column");
+    for (int d = 0; d < 3; ++d) {
+        double q = d < dim ? (1 - w1) * p[0][d] / cnt[0] + w1 * p[1][d] / cnt[1] : 0.0;
+        double ref = d == 0 ? b.x_root + sx : b.centre[d];
+        if (pos) pos[d] = q;
+        if (disp) disp[d] = d < dim ? q - ref : 0.0;
+    }
+    return RY_OK;
+}
+
+/* External force per particle (N; per metre of depth in 2D) for the load types:
+ *   end      P = load.intensity at the free end: statically equivalent to a point load at
+ *            x = L (same resultant and moment), spread evenly over the last column (weight 3/2)
+ *            and the one before it (weight -1/2), whose centres lie at L - dx/2 and L - 3dx/2;
+ *   uniform  q(s) = q0, linear q(s) = q0 s / L, cosine q(s) = q0 cos(pi s / (2 L)) (N/m;
+ *            per metre of depth in 2D), s the distance from the root: f_i = q(s_i) V_i / A.
+ * The direction is load.direction (normalised). */
+static ry_status load_forces(ry_sim *sim, solid *s, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    for (int d = 0; d < sim->dim; ++d) memset(ps->f[s->f_fext[d]], 0, ps->n * sizeof(double));
+    if (s->load == LOAD_NONE) return RY_OK;
+    ry_beam b;
+    RY_TRY(ry_beam_geometry(sim, &b, err));
+    double *count = calloc((size_t)b.ncol, sizeof *count);
+    RY_CHECK(err, count != NULL, RY_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < ps->n; ++i)
+        if (ps->kind[i] == RY_KIND_SOLID) count[column_of(&b, sim->dx, ps->f[s->f_X[0]][i])] += 1;
+    const double pi = 3.14159265358979323846;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        int k = column_of(&b, sim->dx, ps->f[s->f_X[0]][i]);
+        double sx = ps->f[s->f_X[0]][i] - b.x_root, f = 0;
+        double v = ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
+        switch (s->load) {
+        case LOAD_END:
+            if (b.ncol < 2)
+                f = s->load_q / count[k];
+            else if (k == b.ncol - 1)
+                f = 1.5 * s->load_q / count[k];
+            else if (k == b.ncol - 2)
+                f = -0.5 * s->load_q / count[k];
+            break;
+        case LOAD_UNIFORM:
+            f = s->load_q * v / b.area;
+            break;
+        case LOAD_LINEAR:
+            f = s->load_q * sx / b.length * v / b.area;
+            break;
+        case LOAD_COSINE:
+            f = s->load_q * cos(0.5 * pi * sx / b.length) * v / b.area;
+            break;
+        default:
+            break;
+        }
+        for (int d = 0; d < sim->dim; ++d) ps->f[s->f_fext[d]][i] = f * s->load_dir[d];
+    }
+    free(count);
+    return RY_OK;
+}
+
+/* ---- set-up ------------------------------------------------------------------------------- */
+
+static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
+    solid *s = calloc(1, sizeof *s);
+    RY_CHECK(err, s != NULL, RY_ERR_NOMEM, "out of memory");
+    *state = s;
+    double zero = 0.0;
+    char where[256];
+    const char *form;
+    RY_TRY(ry_case_string(c, "scheme.formulation", "total_lagrangian", &form, err));
+    RY_CHECK(err, strcmp(form, "total_lagrangian") == 0, RY_ERR_INPUT,
+             "%s: key 'scheme.formulation': expected total_lagrangian, got '%s'",
+             ry_case_where(c, "scheme.formulation", where, sizeof where), form);
+    RY_TRY(ry_case_choice(c, "scheme.correction", "quadratic", corr_names, &s->correction, err));
+    RY_TRY(ry_case_choice(c, "scheme.clamp", "face", clamp_names, &s->clamp, err));
+    RY_TRY(ry_case_choice(c, "scheme.integration",
+                          s->correction == CORR_QUADRATIC ? "gradient" : "nodal", integration_names,
+                          &s->integration, err));
+    RY_CHECK(err, s->integration == INTEGRATION_NODAL || s->correction == CORR_QUADRATIC,
+             RY_ERR_INPUT,
+             "%s: key 'scheme.integration': gradient needs scheme.correction: quadratic",
+             ry_case_where(c, "scheme.integration", where, sizeof where));
+    double hg = 0.1;
+    RY_TRY(ry_case_double(c, "scheme.hourglass", &hg, 0.0, 100.0, &s->hourglass, err));
+    if (sim->dim == 2)
+        RY_TRY(ry_case_choice(c, "scheme.plane", "stress", plane_names, &s->plane, err));
+    RY_TRY(ry_case_choice(c, "scheme.load.type", "none", load_names, &s->load, err));
+    if (s->load != LOAD_NONE) {
+        double def[3] = {0, 0, 0};
+        def[sim->dim - 1] = -1;
+        RY_TRY(
+            ry_case_double(c, "scheme.load.intensity", NULL, -INFINITY, INFINITY, &s->load_q, err));
+        RY_TRY(ry_case_vector(c, "scheme.load.direction", def, sim->dim, s->load_dir, err));
+        double n2 = 0;
+        for (int d = 0; d < sim->dim; ++d) n2 += s->load_dir[d] * s->load_dir[d];
+        RY_CHECK(err, n2 > 0, RY_ERR_INPUT, "%s: key 'scheme.load.direction': zero vector",
+                 ry_case_where(c, "scheme.load.direction", where, sizeof where));
+        for (int d = 0; d < sim->dim; ++d) s->load_dir[d] /= sqrt(n2);
+    }
+    RY_TRY(ry_case_choice(c, "scheme.relaxation", "none", relax_names, &s->relax, err));
+    if (s->relax == RELAX_VISCOUS)
+        RY_TRY(ry_case_positive(c, "scheme.damping", NULL, &s->damping, err));
+    RY_TRY(ry_case_double(c, "scheme.residual", &zero, 0.0, 1.0, &s->residual_tol, err));
+    s->residual = NAN;
+
+    ry_particles *ps = &sim->ps;
+    s->lam = calloc((size_t)sim->nmat, sizeof *s->lam);
+    s->mu = calloc((size_t)sim->nmat, sizeof *s->mu);
+    s->E = calloc((size_t)sim->nmat, sizeof *s->E);
+    s->modulus = calloc((size_t)sim->nmat, sizeof *s->modulus);
+    RY_CHECK(err, s->lam && s->mu && s->E && s->modulus, RY_ERR_NOMEM, "out of memory");
+    int *used = calloc((size_t)sim->nmat, sizeof *used);
+    RY_CHECK(err, used != NULL, RY_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < ps->n; ++i) used[ps->material[i]] = 1;
+    ry_status st = RY_OK;
+    for (int m = 0; m < sim->nmat && st == RY_OK; ++m)
+        if (used[m]) st = read_material(sim, c, s, m, err);
+    RY_TRY(st);
+    /* Time step from the fastest wave. With dynamic relaxation only the free (solid) particles
+     * count: the ones next to a stiffer clamp get a larger fictitious mass instead. */
+    for (size_t i = 0; i < ps->n; ++i) {
+        const int m = ps->material[i];
+        if (s->relax == RELAX_NONE || ps->kind[i] == RY_KIND_SOLID)
+            s->c_max = fmax(s->c_max, sqrt(s->modulus[m] / sim->mat[m].density));
+    }
+    free(used);
+    for (size_t i = 0; i < ps->n; ++i)
+        RY_CHECK(err, ps->kind[i] != RY_KIND_FLUID, RY_ERR_INPUT,
+                 "%s: the scheme 'solid' takes bodies of kind solid or wall (clamped), not fluid",
+                 ry_case_where(c, "bodies", where, sizeof where));
+
+    static const char *const Xn[3] = {"x0", "y0", "z0"};
+    static const char *const fn[3] = {"load_x", "load_y", "load_z"};
+    static const char *const un[3] = {"displacement_x", "displacement_y", "displacement_z"};
+    for (int d = 0; d < 3; ++d) {
+        RY_TRY(ry_particles_add_field(ps, Xn[d], "m", d, RY_FIELD_STATE, &s->f_X[d], err));
+        RY_TRY(ry_particles_add_field(ps, fn[d], "N", d, RY_FIELD_STATE, &s->f_fext[d], err));
+        RY_TRY(ry_particles_add_field(ps, un[d], "m", d, RY_FIELD_OUTPUT, &s->f_u[d], err));
+    }
+    RY_TRY(ry_particles_add_field(ps, "strain_energy_density", "J/m^3", -1, RY_FIELD_OUTPUT,
+                                  &s->f_psi, err));
+    for (int d = 0; d < sim->dim; ++d)
+        memcpy(ps->f[s->f_X[d]], ps->f[RY_F_X + d], ps->n * sizeof(double));
+    for (size_t i = 0; i < ps->n; ++i)
+        if (ps->kind[i] == RY_KIND_WALL)
+            for (int d = 0; d < sim->dim; ++d) ps->f[RY_F_VX + d][i] = 0;
+    RY_TRY(load_forces(sim, s, err));
+    return RY_OK;
+}
+
+static void solid_free(void *state) {
+    solid *s = state;
+    if (!s) return;
+    ry_cells_free(&s->cells);
+    ry_nlist_free(&s->nl);
+    free(s->G);
+    free(s->H);
+    free(s->Q);
+    free(s->rev);
+    free(s->vol);
+    free(s->A);
+    free(s->r2);
+    free(s->lam);
+    free(s->mu);
+    free(s->E);
+    free(s->F);
+    free(s->modulus);
+    free(s->mscale);
+    free(s->hgc);
+    free(s);
+}
+
+/* Neighbour list, kernel gradients and corrections in the reference configuration. */
+static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const ry_kernel *k = &sim->kernel;
+    const double *X[3] = {ps->f[s->f_X[0]], ps->f[s->f_X[1]], dim > 2 ? ps->f[s->f_X[2]] : NULL};
+    RY_TRY(ry_cells_build(&s->cells, &sim->box, k->radius, n, X, err));
+    RY_TRY(ry_nlist_build_cells(&s->nl, &s->cells, &sim->box, k->radius, n, X, err));
+    const size_t npair = s->nl.offset[n];
+    s->G = malloc((npair ? npair : 1) * (size_t)dim * sizeof *s->G);
+    if (s->integration == INTEGRATION_GRADIENT) {
+        s->H = malloc((npair ? npair : 1) * (size_t)(dim * dim) * sizeof *s->H);
+        s->Q = calloc(n * 27, sizeof *s->Q);
+        RY_CHECK(err, s->H && s->Q, RY_ERR_NOMEM, "out of memory");
+    }
+    s->rev = malloc((npair ? npair : 1) * sizeof *s->rev);
+    s->vol = malloc(n * sizeof *s->vol);
+    s->A = malloc(n * 9 * sizeof *s->A);
+    s->r2 = malloc(n * sizeof *s->r2);
+    s->F = malloc(n * 9 * sizeof *s->F);
+    s->mscale = malloc(n * sizeof *s->mscale);
+    s->hgc = malloc((npair ? npair : 1) * sizeof *s->hgc);
+    RY_CHECK(err, s->G && s->rev && s->vol && s->A && s->r2 && s->F && s->mscale && s->hgc,
+             RY_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < n; ++i)
+        s->vol[i] = ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
+    ry_status st = RY_OK;
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
+    for (size_t i = 0; i < n; ++i) {
+        double xi[3] = {0, 0, 0};
+        for (int d = 0; d < dim; ++d) xi[d] = X[d][i];
+        const size_t o = s->nl.offset[i], nn = s->nl.offset[i + 1] - o;
+        const int mi = ps->material[i];
+        double ms = 1.0;
+        for (size_t q = o; q < o + nn; ++q) {
+            const uint32_t j = s->nl.j[q];
+            const int mj = ps->material[j];
+            double R2 = 0;
+            for (int d = 0; d < dim; ++d) R2 += (X[d][j] - xi[d]) * (X[d][j] - xi[d]);
+            const double R = sqrt(R2);
+            s->hgc[q] = R > 0 && R < k->radius
+                            ? 0.5 * (s->E[mi] + s->E[mj]) * s->vol[j] * ry_kernel_w(k, R) / R2
+                            : 0.0;
+            if (s->relax != RELAX_NONE) ms = fmax(ms, s->modulus[mj] / s->modulus[mi]);
+        }
+        s->mscale[i] = ms;
+        for (size_t q = o; q < o + nn; ++q) { /* reverse pair: i in the sorted list of j */
+            const uint32_t j = s->nl.j[q];
+            size_t lo = s->nl.offset[j], hi = s->nl.offset[j + 1];
+            while (lo < hi) {
+                size_t mid = lo + (hi - lo) / 2;
+                if (s->nl.j[mid] < i)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            s->rev[q] = lo;
+        }
+        ry_error e1;
+        ry_status si = RY_OK;
+        if (s->correction == CORR_QUADRATIC) {
+            si = ry_corr_quadratic_gradient(k, xi, nn, s->nl.j + o, X, s->vol,
+                                            s->G + (size_t)dim * o,
+                                            s->H ? s->H + (size_t)(dim * dim) * o : NULL, &e1);
+        } else {
+            ry_corr cr;
+            si = ry_corr_build(
+                &cr, s->correction == CORR_LINEAR ? RY_CORRECTION_LINEAR : RY_CORRECTION_NONE, k,
+                xi, s->vol[i], nn, s->nl.j + o, X, s->vol, &e1);
+            for (size_t q = o; q < o + nn && si == RY_OK; ++q) {
+                const size_t j = s->nl.j[q];
+                double xj[3] = {0, 0, 0}, g[3];
+                for (int d = 0; d < dim; ++d) xj[d] = X[d][j];
+                ry_corr_grad_w(&cr, k, xi, xj, g);
+                for (int d = 0; d < dim; ++d) s->G[q * (size_t)dim + (size_t)d] = s->vol[j] * g[d];
+            }
+        }
+        if (si != RY_OK) {
+#pragma omp critical
+            if (st == RY_OK) {
+                st = si;
+                if (err) *err = e1;
+            }
+        }
+    }
+    for (size_t q = 0; q < npair && st == RY_OK; ++q)
+        RY_CHECK(err, s->rev[q] < npair, RY_ERR_INTERNAL, "solid: asymmetric neighbour list");
+    if (st != RY_OK) ry_error_prefix(err, "solid: ");
+    s->built = 1;
+    return st;
+}
+
+/* ---- forces ------------------------------------------------------------------------------- */
+
+/* The strain-gradient term of the cell energy: with the strain varying linearly over the
+ * particle's cell (a square or cube of side c, c^d = V_i), the cell's energy is
+ * V_i (Psi(E_i) + (c^2/24) sum_k dE_k : C : dE_k), dE_k = d E / d X_k = sym(F^T D_k), D_k = d F /
+ * d X_k from the second-derivative weights of the quadratic fit. Without it (nodal integration)
+ * a beam of n particles across its thickness bends with I (1 - 1/n^2) instead of I. Adds
+ * P' = (c^2/12) sum_k D_k T_k (T_k = C : dE_k) to the first Piola-Kirchhoff stress and stores
+ * the stresses Q_k = (c^2/12) F T_k that act through the second-derivative weights. */
+RY_SOLID_INLINE void strain_gradient(ry_sim *sim, solid *s, size_t i, const double *F, double *psi,
+                                     const int dim) {
+    const ry_particles *ps = &sim->ps;
+    const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
+    const double c12 = pow(s->vol[i], 2.0 / dim) / 12.0;
+    const int m = ps->material[i];
+    double D[3][9] = {{0}};
+    for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
+        const size_t j = s->nl.j[q];
+        const double *h = s->H + q * (size_t)(dim * dim);
+        for (int a = 0; a < dim; ++a) {
+            const double dxa = x[a][j] - x[a][i];
+            for (int k = 0; k < dim; ++k)
+                for (int b = 0; b < dim; ++b) D[k][3 * a + b] += dxa * h[dim * k + b];
+        }
+    }
+    double *P = s->A + 9 * i, *Q = s->Q + 27 * i;
+    for (int k = 0; k < dim; ++k) {
+        double dE[9] = {0}, T[9] = {0}, tr = 0;
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                double t = 0;
+                for (int c = 0; c < dim; ++c)
+                    t += F[3 * c + a] * D[k][3 * c + b] + F[3 * c + b] * D[k][3 * c + a];
+                dE[3 * a + b] = 0.5 * t;
+            }
+        for (int a = 0; a < dim; ++a) tr += dE[4 * a];
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                T[3 * a + b] = 2 * s->mu[m] * dE[3 * a + b] + (a == b ? s->lam[m] * tr : 0.0);
+                *psi += 0.5 * c12 * T[3 * a + b] * dE[3 * a + b];
+            }
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                double dt = 0, ft = 0;
+                for (int c = 0; c < dim; ++c) {
+                    dt += D[k][3 * a + c] * T[3 * c + b];
+                    ft += F[3 * a + c] * T[3 * c + b];
+                }
+                P[3 * a + b] += c12 * dt;
+                Q[9 * k + 3 * a + b] = c12 * ft;
+            }
+    }
+}
+
+/* Pass 1: F_i, stress, A_i = P_i L_i for every particle (clamped ones included). */
+RY_SOLID_INLINE void stresses_dim(ry_sim *sim, solid *s, const int dim) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
+    for (size_t i = 0; i < n; ++i) {
+        double F[9] = {0}, E[9] = {0}, S[9] = {0}, P[9] = {0};
+        for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
+            const size_t j = s->nl.j[q];
+            const double *g = s->G + q * (size_t)dim;
+            for (int a = 0; a < dim; ++a) {
+                const double dxa = x[a][j] - x[a][i];
+                for (int b = 0; b < dim; ++b) F[3 * a + b] += dxa * g[b];
+            }
+        }
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                double t = 0;
+                for (int c = 0; c < dim; ++c) t += F[3 * c + a] * F[3 * c + b];
+                E[3 * a + b] = 0.5 * (t - (a == b));
+            }
+        const int m = ps->material[i];
+        double tr = 0, psi = 0;
+        for (int a = 0; a < dim; ++a) tr += E[4 * a];
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                S[3 * a + b] = 2 * s->mu[m] * E[3 * a + b] + (a == b ? s->lam[m] * tr : 0.0);
+                psi += 0.5 * S[3 * a + b] * E[3 * a + b];
+            }
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                double t = 0;
+                for (int c = 0; c < dim; ++c) t += F[3 * a + c] * S[3 * c + b];
+                P[3 * a + b] = t;
+            }
+        const int no_energy = s->clamp == CLAMP_FACE && ps->kind[i] != RY_KIND_SOLID;
+        if (no_energy) {
+            memset(P, 0, sizeof P);
+            psi = 0;
+        }
+        memcpy(s->F + 9 * i, F, sizeof F);
+        memcpy(s->A + 9 * i, P, sizeof P);
+        if (s->H && !no_energy) strain_gradient(sim, s, i, F, &psi, dim);
+        /* Cauchy stress sigma = P F^T / J for output: pressure -tr(sigma)/dim, density rho0/J */
+        double J = dim == 2
+                       ? F[0] * F[4] - F[1] * F[3]
+                       : F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                             F[2] * (F[3] * F[7] - F[4] * F[6]);
+        double trs = 0;
+        for (int a = 0; a < dim; ++a)
+            for (int c = 0; c < dim; ++c) trs += P[3 * a + c] * F[3 * a + c];
+        ps->f[RY_F_P][i] = J > 0 ? -trs / (J * dim) : 0.0;
+        ps->f[RY_F_RHO][i] = sim->mat[m].density / (J > 0 ? J : 1.0);
+        ps->f[s->f_psi][i] = psi;
+    }
+}
+
+/* Pass 2: accelerations of the free particles and the residual. */
+RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, const int dim) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    double *acc[3] = {ps->f[RY_F_AX], ps->f[RY_F_AY], dim > 2 ? ps->f[RY_F_AZ] : NULL};
+    const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
+    const double *X[3] = {ps->f[s->f_X[0]], ps->f[s->f_X[1]], dim > 2 ? ps->f[s->f_X[2]] : NULL};
+    const double hg = s->hourglass;
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) {
+            for (int d = 0; d < dim; ++d) acc[d][i] = 0;
+            s->r2[i] = 0;
+            continue;
+        }
+        double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
+        const double *Ai = s->A + 9 * i, *Fi = s->F + 9 * i;
+        const double vi = s->vol[i];
+        for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
+            const size_t j = s->nl.j[q];
+            const double *gij = s->G + q * (size_t)dim, *gji = s->G + s->rev[q] * (size_t)dim;
+            const double *Aj = s->A + 9 * j;
+            const double vj = s->vol[j];
+            for (int a = 0; a < dim; ++a) {
+                double t = 0;
+                for (int b = 0; b < dim; ++b)
+                    t += vi * Ai[3 * a + b] * gij[b] - vj * Aj[3 * a + b] * gji[b];
+                f[a] += t;
+            }
+            if (s->H) { /* strain-gradient stresses through the second-derivative weights */
+                const double *hij = s->H + q * (size_t)(dim * dim);
+                const double *hji = s->H + s->rev[q] * (size_t)(dim * dim);
+                const double *Qi = s->Q + 27 * i, *Qj = s->Q + 27 * j;
+                for (int a = 0; a < dim; ++a) {
+                    double t = 0;
+                    for (int k = 0; k < dim; ++k)
+                        for (int b = 0; b < dim; ++b)
+                            t += vi * Qi[9 * k + 3 * a + b] * hij[dim * k + b] -
+                                 vj * Qj[9 * k + 3 * a + b] * hji[dim * k + b];
+                    f[a] += t;
+                }
+            }
+            if (hg > 0) {
+                /* e_ij = x_j - x_i - (F_i + F_j)/2 (X_j - X_i) */
+                const double *Fj = s->F + 9 * j, cij = s->hgc[q];
+                double Xji[3];
+                for (int a = 0; a < dim; ++a) Xji[a] = X[a][j] - X[a][i];
+                for (int a = 0; a < dim; ++a) {
+                    double e = x[a][j] - x[a][i];
+                    for (int b = 0; b < dim; ++b)
+                        e -= 0.5 * (Fi[3 * a + b] + Fj[3 * a + b]) * Xji[b];
+                    fh[a] += cij * e;
+                }
+            }
+        }
+        const double m = ps->f[RY_F_MASS][i];
+        double r2 = 0;
+        for (int a = 0; a < dim; ++a) {
+            double ft = f[a] + vi * hg * fh[a] + ps->f[s->f_fext[a]][i] + m * sim->gravity[a];
+            acc[a][i] = ft / (m * s->mscale[i]);
+            r2 += ft * ft;
+        }
+        s->r2[i] = r2;
+    }
+    /* residual, summed in particle order (the same for any thread count) */
+    double net = 0, ext = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        net += s->r2[i];
+        for (int a = 0; a < dim; ++a) {
+            double fe = ps->f[s->f_fext[a]][i] + ps->f[RY_F_MASS][i] * sim->gravity[a];
+            ext += fe * fe;
+        }
+    }
+    s->residual = ext > 0 ? sqrt(net / ext) : sqrt(net);
+}
+
+/* The pair loops with the dimension a compile-time constant. */
+static void stresses(ry_sim *sim, solid *s) {
+    if (sim->dim == 2)
+        stresses_dim(sim, s, 2);
+    else
+        stresses_dim(sim, s, 3);
+}
+static void forces(ry_sim *sim, solid *s) {
+    if (sim->dim == 2)
+        forces_dim(sim, s, 2);
+    else
+        forces_dim(sim, s, 3);
+}
+
+static ry_status evaluate(ry_sim *sim, solid *s, ry_error *err) {
+    if (!s->built) RY_TRY(build_reference(sim, s, err));
+    stresses(sim, s);
+    forces(sim, s);
+    s->have_forces = 1;
+    return RY_OK;
+}
+
+static ry_status solid_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
+    solid *s = state;
+    (void)err;
+    *dt = sim->cfl * sim->kernel.h / s->c_max;
+    return RY_OK;
+}
+
+/* Kinetic energy of the solid particles; with mscale, of the fictitious masses. */
+static double kinetic_energy(const ry_sim *sim, const double *mscale) {
+    const ry_particles *ps = &sim->ps;
+    double e = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        double v2 = 0;
+        for (int d = 0; d < sim->dim; ++d) v2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        e += 0.5 * ps->f[RY_F_MASS][i] * (mscale ? mscale[i] : 1.0) * v2;
+    }
+    return e;
+}
+
+static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) {
+    solid *s = state;
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    if (!s->have_forces) RY_TRY(evaluate(sim, s, err));
+    const double keep = s->relax == RELAX_VISCOUS ? (1 - 0.5 * s->damping * dt) : 1.0;
+    const double gain = s->relax == RELAX_VISCOUS ? 1.0 / (1 + 0.5 * s->damping * dt) : 1.0;
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        for (int d = 0; d < dim; ++d) {
+            double *v = ps->f[RY_F_VX + d];
+            v[i] = (keep * v[i] + dt * ps->f[RY_F_AX + d][i]) * gain;
+        }
+    }
+    if (s->relax == RELAX_KINETIC) {
+        double ke = kinetic_energy(sim, s->mscale);
+        if (ke < s->ke_prev) { /* past a maximum of the kinetic energy: stop everything */
+            for (size_t i = 0; i < n; ++i)
+                for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][i] = 0;
+            s->peaks++;
+            ke = 0;
+        }
+        s->ke_prev = ke;
+    }
+#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        for (int d = 0; d < dim; ++d) {
+            ps->f[RY_F_X + d][i] += dt * ps->f[RY_F_VX + d][i];
+            ps->f[s->f_u[d]][i] = ps->f[RY_F_X + d][i] - ps->f[s->f_X[d]][i];
+        }
+    }
+    RY_TRY(evaluate(sim, s, err));
+    if (s->relax != RELAX_NONE && s->residual_tol > 0 && s->residual < s->residual_tol)
+        sim->finished = 1;
+    return RY_OK;
+}
+
+const ry_scheme_type ry_scheme_solid = {
+    "solid",    "elastic solid, total-Lagrangian SPH with corrected kernel gradients (seed 000)",
+    solid_init, solid_dt,
+    solid_step, solid_free};
+
+/* ---- probes ------------------------------------------------------------------------------- */
+
+static ry_status probe_tip(const ry_sim *sim, double *v, int axial, ry_error *err) {
+    const solid *s = solid_state(sim);
+    *v = NAN;
+    if (!s) return RY_OK;
+    ry_beam b;
+    double u[3];
+    RY_TRY(ry_beam_geometry(sim, &b, err));
+    RY_TRY(ry_beam_centreline(sim, b.length, NULL, u, err));
+    if (axial) {
+        *v = u[0];
+    } else {
+        double dir[3] = {0, 0, 0};
+        if (s->load != LOAD_NONE)
+            memcpy(dir, s->load_dir, sizeof dir);
+        else
+            dir[sim->dim - 1] = -1;
+        *v = u[0] * dir[0] + u[1] * dir[1] + u[2] * dir[2];
+    }
+    return RY_OK;
+}
+static ry_status probe_tip_deflection(const ry_sim *sim, double *v, ry_error *err) {
+    return probe_tip(sim, v, 0, err);
+}
+static ry_status probe_tip_axial(const ry_sim *sim, double *v, ry_error *err) {
+    return probe_tip(sim, v, 1, err);
+}
+static ry_status probe_residual(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = ry_solid_residual(sim);
+    return RY_OK;
+}
+static ry_status probe_solid_ke(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = kinetic_energy(sim, NULL);
+    return RY_OK;
+}
+static ry_status probe_strain_energy(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    const solid *s = solid_state(sim);
+    const ry_particles *ps = &sim->ps;
+    double e = 0;
+    if (s)
+        for (size_t i = 0; i < ps->n; ++i)
+            e += ps->f[s->f_psi][i] * ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
+    *v = s ? e : NAN;
+    return RY_OK;
+}
+
+const ry_probe ry_probe_tip_deflection = {
+    "tip_deflection", "beam: displacement of the free end of the centreline along the load [m]",
+    probe_tip_deflection};
+const ry_probe ry_probe_tip_axial = {
+    "tip_axial", "beam: displacement of the free end of the centreline along x [m]",
+    probe_tip_axial};
+const ry_probe ry_probe_residual = {
+    "residual", "solid: relative residual |f + f_ext| / |f_ext| of the last force evaluation",
+    probe_residual};
+const ry_probe ry_probe_solid_kinetic_energy = {
+    "solid_kinetic_energy", "kinetic energy of the solid particles [J]", probe_solid_ke};
+const ry_probe ry_probe_strain_energy = {
+    "strain_energy", "elastic energy stored in the solid and clamped particles [J]",
+    probe_strain_energy};
