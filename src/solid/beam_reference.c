@@ -38,27 +38,26 @@ static double shear(ry_beam_load load, double L, double s) {
     }
 }
 
-/* Composite Simpson, 2000 intervals (the integrands are smooth: error below 1e-12). */
-double ry_beam_deflection_eb(ry_beam_load load, double L, double EI, double x) {
+/* Composite Simpson over [0, x], 2000 intervals (the integrands are smooth: error below
+ * 1e-12), of f(s) times the lever arm (x - s) when `lever` is set. */
+static double simpson(double (*f)(ry_beam_load, double, double), ry_beam_load load, double L,
+                      double x, int lever) {
     const int n = 2000;
     const double hs = x / n;
     double sum = 0;
     for (int i = 0; i <= n; ++i) {
         double s = i * hs, w = (i == 0 || i == n) ? 1 : (i % 2 ? 4 : 2);
-        sum += w * (x - s) * moment(load, L, s);
+        sum += w * (lever ? x - s : 1.0) * f(load, L, s);
     }
-    return sum * hs / 3 / EI;
+    return sum * hs / 3;
+}
+
+double ry_beam_deflection_eb(ry_beam_load load, double L, double EI, double x) {
+    return simpson(moment, load, L, x, 1) / EI;
 }
 
 double ry_beam_deflection_shear(ry_beam_load load, double L, double kappa_GA, double x) {
-    const int n = 2000;
-    const double hs = x / n;
-    double sum = 0;
-    for (int i = 0; i <= n; ++i) {
-        double s = i * hs, w = (i == 0 || i == n) ? 1 : (i % 2 ? 4 : 2);
-        sum += w * shear(load, L, s);
-    }
-    return sum * hs / 3 / kappa_GA;
+    return simpson(shear, load, L, x, 0) / kappa_GA;
 }
 
 /* With theta the angle of the centreline from the x axis (0 at the root, theta0 at the tip),

@@ -658,6 +658,15 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
     *vmax2 = fmax(*vmax2, v2);
 }
 
+/* The kernels the pair loops are compiled for, and a row of a driver table: [kernel][dim - 2]
+ * [variant] -> PREFIX_DIM_KERNEL_VARIANT. */
+#define RY_FOR_EACH_KERNEL_(X)                                                                     \
+    X(RY_KERNEL_CUBIC)                                                                             \
+    X(RY_KERNEL_QUINTIC)                                                                           \
+    X(RY_KERNEL_WENDLAND_C2) X(RY_KERNEL_WENDLAND_C4) X(RY_KERNEL_LUCY) X(RY_KERNEL_GAUSSIAN)
+#define RY_DRIVER_ROW_(P, KT)                                                                      \
+    [KT] = {{P##_2_##KT##_0, P##_2_##KT##_1}, {P##_3_##KT##_0, P##_3_##KT##_1}}
+
 /* One parallel loop per (dimension, kernel, variant). The OpenMP region must sit in a function
  * of its own for each: the outlined body is made before inlining, so a region inside a shared
  * inline function would see dim and the kernel as run-time values. */
@@ -677,18 +686,10 @@ typedef void (*fluid_driver)(const pass_ctx *c, force_out *res);
 #define RY_FLUID_DRIVERS_(KT)                                                                      \
     RY_FLUID_DRIVER_(2, KT, 0)                                                                     \
     RY_FLUID_DRIVER_(2, KT, 1) RY_FLUID_DRIVER_(3, KT, 0) RY_FLUID_DRIVER_(3, KT, 1)
-RY_FLUID_DRIVERS_(RY_KERNEL_CUBIC)
-RY_FLUID_DRIVERS_(RY_KERNEL_QUINTIC)
-RY_FLUID_DRIVERS_(RY_KERNEL_WENDLAND_C2)
-RY_FLUID_DRIVERS_(RY_KERNEL_WENDLAND_C4)
-RY_FLUID_DRIVERS_(RY_KERNEL_LUCY)
-RY_FLUID_DRIVERS_(RY_KERNEL_GAUSSIAN)
-#define RY_FLUID_ROW_(KT)                                                                          \
-    [KT] = {{fluid_2_##KT##_0, fluid_2_##KT##_1}, {fluid_3_##KT##_0, fluid_3_##KT##_1}}
+RY_FOR_EACH_KERNEL_(RY_FLUID_DRIVERS_)
+#define RY_FLUID_ROW_(KT) RY_DRIVER_ROW_(fluid, KT),
 static const fluid_driver fluid_drivers[RY_KERNEL_COUNT][2][2] = {
-    RY_FLUID_ROW_(RY_KERNEL_CUBIC),       RY_FLUID_ROW_(RY_KERNEL_QUINTIC),
-    RY_FLUID_ROW_(RY_KERNEL_WENDLAND_C2), RY_FLUID_ROW_(RY_KERNEL_WENDLAND_C4),
-    RY_FLUID_ROW_(RY_KERNEL_LUCY),        RY_FLUID_ROW_(RY_KERNEL_GAUSSIAN)};
+    RY_FOR_EACH_KERNEL_(RY_FLUID_ROW_)};
 #undef RY_FLUID_ROW_
 #undef RY_FLUID_DRIVERS_
 #undef RY_FLUID_DRIVER_
@@ -792,28 +793,19 @@ typedef void (*tvf_driver)(ry_sim *sim, const wcsph *w, force_out *res);
     RY_TVF_DRIVER_(3, KT, 1)                                                                       \
     RY_DENSITY_DRIVER_(2, KT, 0)                                                                   \
     RY_DENSITY_DRIVER_(2, KT, 1) RY_DENSITY_DRIVER_(3, KT, 0) RY_DENSITY_DRIVER_(3, KT, 1)
-RY_TVF_DRIVERS_(RY_KERNEL_CUBIC)
-RY_TVF_DRIVERS_(RY_KERNEL_QUINTIC)
-RY_TVF_DRIVERS_(RY_KERNEL_WENDLAND_C2)
-RY_TVF_DRIVERS_(RY_KERNEL_WENDLAND_C4)
-RY_TVF_DRIVERS_(RY_KERNEL_LUCY)
-RY_TVF_DRIVERS_(RY_KERNEL_GAUSSIAN)
-#define RY_TVF_ROW_(KT) [KT] = {{tvf_2_##KT##_0, tvf_2_##KT##_1}, {tvf_3_##KT##_0, tvf_3_##KT##_1}}
-static const tvf_driver tvf_drivers[RY_KERNEL_COUNT][2][2] = {
-    RY_TVF_ROW_(RY_KERNEL_CUBIC),       RY_TVF_ROW_(RY_KERNEL_QUINTIC),
-    RY_TVF_ROW_(RY_KERNEL_WENDLAND_C2), RY_TVF_ROW_(RY_KERNEL_WENDLAND_C4),
-    RY_TVF_ROW_(RY_KERNEL_LUCY),        RY_TVF_ROW_(RY_KERNEL_GAUSSIAN)};
-#define RY_DENSITY_ROW_(KT)                                                                        \
-    [KT] = {{density_2_##KT##_0, density_2_##KT##_1}, {density_3_##KT##_0, density_3_##KT##_1}}
+RY_FOR_EACH_KERNEL_(RY_TVF_DRIVERS_)
+#define RY_TVF_ROW_(KT) RY_DRIVER_ROW_(tvf, KT),
+static const tvf_driver tvf_drivers[RY_KERNEL_COUNT][2][2] = {RY_FOR_EACH_KERNEL_(RY_TVF_ROW_)};
+#define RY_DENSITY_ROW_(KT) RY_DRIVER_ROW_(density, KT),
 static const density_driver density_drivers[RY_KERNEL_COUNT][2][2] = {
-    RY_DENSITY_ROW_(RY_KERNEL_CUBIC),       RY_DENSITY_ROW_(RY_KERNEL_QUINTIC),
-    RY_DENSITY_ROW_(RY_KERNEL_WENDLAND_C2), RY_DENSITY_ROW_(RY_KERNEL_WENDLAND_C4),
-    RY_DENSITY_ROW_(RY_KERNEL_LUCY),        RY_DENSITY_ROW_(RY_KERNEL_GAUSSIAN)};
+    RY_FOR_EACH_KERNEL_(RY_DENSITY_ROW_)};
 #undef RY_TVF_ROW_
 #undef RY_DENSITY_ROW_
 #undef RY_TVF_DRIVERS_
 #undef RY_TVF_DRIVER_
 #undef RY_DENSITY_DRIVER_
+#undef RY_DRIVER_ROW_
+#undef RY_FOR_EACH_KERNEL_
 
 static void density_summation(ry_sim *sim, const wcsph *w) {
     density_drivers[sim->kernel.type][sim->dim - 2][is_periodic(sim)](sim, w);
