@@ -51,6 +51,7 @@ typedef struct ry_nlist {
     size_t n;       /* particles */
     size_t *offset; /* n + 1 entries */
     uint32_t *j;    /* offset[n] entries */
+    size_t max_row; /* longest row */
     size_t cap_n, cap_j;
 } ry_nlist;
 

@@ -55,13 +55,15 @@ ry_status ry_nb_reserve_j(ry_nlist *nl, size_t m, ry_error *err) {
     return RY_OK;
 }
 
-size_t ry_nb_prefix_sum(size_t *offset, size_t n) {
-    size_t sum = 0;
+size_t ry_nb_prefix_sum(size_t *offset, size_t n, size_t *max_row) {
+    size_t sum = 0, m = 0;
     offset[0] = 0;
     for (size_t i = 0; i < n; ++i) {
+        if (offset[i + 1] > m) m = offset[i + 1];
         sum += offset[i + 1];
         offset[i + 1] = sum;
     }
+    *max_row = m;
     return sum;
 }
 
@@ -121,7 +123,7 @@ ry_status ry_nb_brute_subset(ry_nlist *nl, const ry_box *box, double radius, siz
         off[q + 1] = brute_row_dim(&g, x, n, r2max, i, NULL);
     }
 
-    size_t total = ry_nb_prefix_sum(off, k);
+    size_t total = ry_nb_prefix_sum(off, k, &nl->max_row);
     RY_TRY(ry_nb_reserve_j(nl, total, err));
     uint32_t *jj = nl->j;
 

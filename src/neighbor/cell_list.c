@@ -387,10 +387,8 @@ ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_bo
         off[i + 1] = cells_row_dim(cl, &g, x, r2max, i, NULL);
     }
 
-    size_t maxcnt = 0;
-    for (size_t i = 0; i < n; ++i)
-        if (off[i + 1] > maxcnt) maxcnt = off[i + 1];
-    size_t total = ry_nb_prefix_sum(off, n);
+    size_t total = ry_nb_prefix_sum(off, n, &nl->max_row);
+    const size_t maxcnt = nl->max_row;
     RY_TRY(ry_nb_reserve_j(nl, total, err));
     uint32_t *jj = nl->j;
 

@@ -46,7 +46,7 @@ ry_status ry_nb_reserve_offsets(ry_nlist *nl, size_t n, ry_error *err);
 /* Makes room for m neighbour entries. */
 ry_status ry_nb_reserve_j(ry_nlist *nl, size_t m, ry_error *err);
 /* Turns counts stored in offset[1..n] into offsets (offset[0] = 0); returns the total. */
-size_t ry_nb_prefix_sum(size_t *offset, size_t n);
+size_t ry_nb_prefix_sum(size_t *offset, size_t n, size_t *max_row);
 
 /* Brute-force neighbour lists of the k particles queries[0..k-1] (of all n when queries is
  * NULL, then k = n): row q of nl holds the neighbours of particle queries[q]. */

@@ -44,7 +44,6 @@ typedef struct wcsph {
     int have_forces;
     int f_vh[3], f_rhoh, f_eh, f_hh, f_vg[3];
     int f_vol, f_mu, f_isfluid, f_visc; /* per-evaluation scratch (transport velocity) */
-    int int_gamma;                      /* Tait exponent when it is a small integer, else 0 */
     double *pack; /* PK_STRIDE doubles per particle, rebuilt each evaluation */
     size_t pack_cap;
     double *scratch; /* per thread: the in-range neighbours of one particle, field by field */
@@ -142,7 +141,6 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         RY_TRY(ry_particles_add_field(ps, "viscous_coupling", "1", -1, 0, &w->f_visc, err));
     }
 
-    w->int_gamma = w->gamma == 7.0 ? 7 : 0;
     w->Bm = calloc((size_t)sim->nmat, sizeof *w->Bm);
     w->rho0m = calloc((size_t)sim->nmat, sizeof *w->rho0m);
     RY_CHECK(err, w->Bm && w->rho0m, RY_ERR_NOMEM, "out of memory");
@@ -185,7 +183,7 @@ static inline double eos_pressure(const wcsph *w, int mat, double rho, double e)
     case EOS_TAIT: {
         const double x = rho / rho0;
         double xg;
-        if (w->int_gamma == 7) {
+        if (w->gamma == 7.0) { /* x^7 without pow */
             const double x2 = x * x;
             xg = x2 * x2 * x2 * x;
         } else {
@@ -254,11 +252,6 @@ static inline double dwdr_h(const ry_kernel *k, double r, double h) {
     double s = k->h / h, sd = s * s;
     if (k->dim == 3) sd *= s;
     return k->dnorm * sd * s * ry_kernel_dshape(k->type, r / h);
-}
-static inline double w_h(const ry_kernel *k, double r, double h) {
-    double s = k->h / h, sd = s * s;
-    if (k->dim == 3) sd *= s;
-    return k->norm * sd * ry_kernel_shape(k->type, r / h);
 }
 
 /* Density by summation for fluid particles (walls keep their extrapolated density):
@@ -495,10 +488,7 @@ static void pass_ctx_init(pass_ctx *c, ry_sim *sim, const wcsph *w) {
     c->inv_c02 = 1.0 / (w->c0 * w->c0);
     c->rep_d = w->rep_d;
     c->rep_r02 = w->rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0;
-    size_t len = 1;
-    for (size_t i = 0; i < c->n; ++i)
-        if (c->off[i + 1] - c->off[i] > len) len = c->off[i + 1] - c->off[i];
-    c->len = (len + 7) & ~(size_t)7;
+    c->len = (sim->nl.max_row + 8) & ~(size_t)7; /* rounded up, at least 8 */
 }
 
 /* Fields of the scratch block: the in-range neighbours of one particle, one array per field,
