@@ -101,6 +101,10 @@ ry_status ry_particles_add_field(ry_particles *ps, const char *name, const char 
 int ry_particles_field(const ry_particles *ps, const char *name);
 /* Bytes per particle held by the set's arrays. */
 size_t ry_particles_bytes_per_particle(const ry_particles *ps);
+/* Kinetic energy sum 1/2 m v^2 of the particles of one kind (dim velocity components); with
+ * mass_scale (one factor per particle, may be NULL), of the scaled masses. */
+double ry_particles_kinetic_energy(const ry_particles *ps, int dim, ry_kind kind,
+                                   const double *mass_scale);
 /* Coordinates as the neighbour search takes them (x[d] for d < dim, NULL beyond). */
 static inline void ry_particles_coords(const ry_particles *ps, const double *x[3]) {
     x[0] = ps->f[RY_F_X];

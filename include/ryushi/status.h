@@ -38,6 +38,9 @@ const char *ry_status_name(ry_status code);
 /* The process exit code the command-line program uses for a status (2 for bad input). */
 int ry_status_exit_code(ry_status code);
 
+/* A malloc'd copy of s (NULL when out of memory). */
+char *ry_strdup(const char *s);
+
 /* Propagates a failing status to the caller. */
 #define RY_TRY(call)                                                                               \
     do {                                                                                           \

@@ -16,13 +16,6 @@ int ry_kind_from_name(const char *name) {
     return -1;
 }
 
-static char *dup_str(const char *s) {
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
-}
-
 static int field_allocated(const ry_particles *ps, int comp) {
     return comp < ps->dim;
 }
@@ -52,8 +45,8 @@ ry_status ry_particles_add_field(ry_particles *ps, const char *name, const char 
     RY_TRY(grow_fields(ps, err));
     int k = ps->nfields;
     ry_field_info *fi = &ps->info[k];
-    fi->name = dup_str(name);
-    fi->unit = dup_str(unit);
+    fi->name = ry_strdup(name);
+    fi->unit = ry_strdup(unit);
     fi->component = component;
     fi->flags = flags;
     ps->f[k] = NULL;
@@ -205,4 +198,16 @@ size_t ry_particles_bytes_per_particle(const ry_particles *ps) {
     for (int k = 0; k < ps->nfields; ++k)
         if (field_allocated(ps, ps->info[k].component)) b += sizeof(double);
     return b;
+}
+
+double ry_particles_kinetic_energy(const ry_particles *ps, int dim, ry_kind kind,
+                                   const double *mass_scale) {
+    double e = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != kind) continue;
+        double v2 = 0;
+        for (int d = 0; d < dim; ++d) v2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        e += 0.5 * ps->f[RY_F_MASS][i] * (mass_scale ? mass_scale[i] : 1.0) * v2;
+    }
+    return e;
 }

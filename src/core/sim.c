@@ -17,13 +17,6 @@ double ry_wall_time(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static char *dup_str(const char *s) {
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
-}
-
 static ry_status read_materials(ry_sim *sim, ry_case *c, ry_error *err) {
     size_t n;
     char k[96], where[256];
@@ -47,7 +40,7 @@ static ry_status read_materials(ry_sim *sim, ry_case *c, ry_error *err) {
                      ry_case_where(c, k, where, sizeof where), k, name);
         RY_CHECK(err, name[0] != '\0', RY_ERR_INPUT, "%s: key '%s': empty material name",
                  ry_case_where(c, k, where, sizeof where), k);
-        m->name = dup_str(name);
+        m->name = ry_strdup(name);
         RY_CHECK(err, m->name != NULL, RY_ERR_NOMEM, "out of memory");
         snprintf(k, sizeof k, "materials[%zu].density", i);
         RY_TRY(ry_case_positive(c, k, NULL, &m->density, err));
@@ -221,13 +214,13 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
 
     char nb[256], def_out[300];
     base_name(ry_case_name(c), nb, sizeof nb);
-    sim->case_name = dup_str(nb);
+    sim->case_name = ry_strdup(nb);
     snprintf(def_out, sizeof def_out, "out/%s", nb);
     const char *folder;
     int yes = 1;
     RY_TRY(ry_case_string(c, "output.folder", def_out, &folder, err));
     RY_TRY(ry_case_bool(c, "output.vtk", &yes, &sim->write_vtk, err));
-    sim->out_dir = dup_str(out_dir ? out_dir : folder);
+    sim->out_dir = ry_strdup(out_dir ? out_dir : folder);
     RY_CHECK(err, sim->out_dir && sim->case_name, RY_ERR_NOMEM, "out of memory");
 
     RY_TRY(read_probes(sim, c, err));

@@ -2,6 +2,7 @@
 #include "ryushi/status.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 ry_status ry_error_vset(ry_error *err, ry_status code, const char *fmt, va_list ap) {
@@ -83,4 +84,11 @@ int ry_status_exit_code(ry_status code) {
         return 1;
     }
     return 1;
+}
+
+char *ry_strdup(const char *s) {
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
 }

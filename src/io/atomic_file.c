@@ -8,17 +8,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static char *dup_str(const char *s) {
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
-}
-
 ry_status ry_atomic_open(ry_atomic_file *f, const char *path, ry_error *err) {
     memset(f, 0, sizeof *f);
     size_t n = strlen(path);
-    f->path = dup_str(path);
+    f->path = ry_strdup(path);
     f->tmp_path = malloc(n + 32);
     if (!f->path || !f->tmp_path) {
         free(f->path);
@@ -83,7 +76,7 @@ ry_status ry_atomic_write(const char *path, const void *data, size_t size, ry_er
 }
 
 ry_status ry_mkdir_p(const char *path, ry_error *err) {
-    char *p = dup_str(path);
+    char *p = ry_strdup(path);
     if (!p) return ry_error_set(err, RY_ERR_NOMEM, "out of memory");
     size_t n = strlen(p);
     for (size_t i = 1; i <= n; ++i) {

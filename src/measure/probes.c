@@ -17,15 +17,7 @@ static ry_status probe_mass(const ry_sim *sim, double *v, ry_error *err) {
 
 static ry_status probe_kinetic(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
-    const ry_particles *ps = &sim->ps;
-    double e = 0;
-    for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
-        double u2 = 0;
-        for (int d = 0; d < sim->dim; ++d) u2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
-        e += 0.5 * ps->f[RY_F_MASS][i] * u2;
-    }
-    *v = e;
+    *v = ry_particles_kinetic_energy(&sim->ps, sim->dim, RY_KIND_FLUID, NULL);
     return RY_OK;
 }
 

@@ -18,13 +18,6 @@ static int nvalues(int dim) {
     return dim + 2;
 }
 
-static char *dup_str(const char *s) {
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
-}
-
 static const char *pkey(char *buf, size_t size, size_t i, const char *name) {
     snprintf(buf, size, "profiles[%zu].%s", i, name);
     return buf;
@@ -54,7 +47,7 @@ ry_status ry_profiles_setup(ry_sim *sim, ry_case *c, ry_error *err) {
             RY_CHECK(err, strcmp(sim->profiles[j].name, name) != 0, RY_ERR_INPUT,
                      "%s: key '%s': profile name '%s' is used twice",
                      ry_case_where(c, k, where, sizeof where), k, name);
-        pf->name = dup_str(name);
+        pf->name = ry_strdup(name);
         RY_CHECK(err, pf->name != NULL, RY_ERR_NOMEM, "out of memory");
         RY_TRY(ry_case_vector(c, pkey(k, sizeof k, i, "from"), NULL, dim, pf->from, err));
         RY_TRY(ry_case_vector(c, pkey(k, sizeof k, i, "to"), NULL, dim, pf->to, err));

@@ -659,19 +659,6 @@ static ry_status solid_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     return RY_OK;
 }
 
-/* Kinetic energy of the solid particles; with mscale, of the fictitious masses. */
-static double kinetic_energy(const ry_sim *sim, const double *mscale) {
-    const ry_particles *ps = &sim->ps;
-    double e = 0;
-    for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_SOLID) continue;
-        double v2 = 0;
-        for (int d = 0; d < sim->dim; ++d) v2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
-        e += 0.5 * ps->f[RY_F_MASS][i] * (mscale ? mscale[i] : 1.0) * v2;
-    }
-    return e;
-}
-
 static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     solid *s = state;
     ry_particles *ps = &sim->ps;
@@ -689,7 +676,7 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         }
     }
     if (s->relax == RELAX_KINETIC) {
-        double ke = kinetic_energy(sim, s->mscale);
+        double ke = ry_particles_kinetic_energy(ps, dim, RY_KIND_SOLID, s->mscale);
         if (ke < s->ke_prev) { /* past a maximum of the kinetic energy: stop everything */
             for (size_t i = 0; i < n; ++i)
                 for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][i] = 0;
@@ -752,7 +739,7 @@ static ry_status probe_residual(const ry_sim *sim, double *v, ry_error *err) {
 }
 static ry_status probe_solid_ke(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
-    *v = kinetic_energy(sim, NULL);
+    *v = ry_particles_kinetic_energy(&sim->ps, sim->dim, RY_KIND_SOLID, NULL);
     return RY_OK;
 }
 static ry_status probe_strain_energy(const ry_sim *sim, double *v, ry_error *err) {
