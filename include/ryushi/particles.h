@@ -51,8 +51,10 @@ typedef enum ry_field_id {
 
 typedef enum ry_kind {
     RY_KIND_FLUID = 0,
-    RY_KIND_WALL = 1,  /* fixed or moving boundary (dummy) particle */
-    RY_KIND_SOLID = 2, /* elastic solid */
+    RY_KIND_WALL = 1,   /* fixed or moving boundary (dummy) particle */
+    RY_KIND_SOLID = 2,  /* elastic solid */
+    RY_KIND_INLET = 3,  /* inflow buffer: moves with the prescribed velocity, becomes fluid */
+    RY_KIND_OUTLET = 4, /* outflow buffer: former fluid, moves on and is removed */
     RY_KIND_COUNT
 } ry_kind;
 

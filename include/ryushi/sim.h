@@ -18,6 +18,15 @@
 
 typedef struct ry_sim ry_sim;
 
+/* A named scalar of a scheme's own state (beside its particle fields), saved in checkpoints
+ * and in the last-good snapshot; exactly one of the pointers is set. */
+typedef struct ry_state_var {
+    const char *name;
+    double *f64;
+    int *i32;
+    long *i64;
+} ry_state_var;
+
 typedef struct ry_material {
     char *name;
     double density;   /* reference density rho0 [kg/m^3] */
@@ -36,6 +45,12 @@ typedef struct ry_scheme_type {
     /* Advances the state by dt (sim->t is advanced by the caller). */
     ry_status (*step)(ry_sim *sim, void *state, double dt, ry_error *err);
     void (*free)(void *state);
+    /* Optional: lists up to max state variables (returns how many). Everything else a scheme
+     * keeps must be either a particle field or derivable from the fields. */
+    int (*state_vars)(void *state, ry_state_var *vars, int max);
+    /* Optional: called after the state was replaced by a checkpoint's or snapshot's (e.g. to
+     * rebuild data derived from the fields). */
+    void (*restored)(ry_sim *sim, void *state);
 } ry_scheme_type;
 
 /* The registered schemes, NULL-terminated. */
@@ -62,6 +77,44 @@ typedef struct ry_profile {
     int nsamples;        /* samples in sum */
     double *sum;         /* npoints x (dim velocity components, p, rho) */
 } ry_profile;
+
+/* An open boundary (case section `open_boundaries`). An inlet is a zone of buffer particles
+ * moving with the prescribed velocity; one that crosses the zone's downstream face becomes
+ * fluid and a new buffer particle enters one zone length upstream (so the lattice is kept). At
+ * an outlet, fluid that crosses the zone's upstream face becomes an outlet buffer particle:
+ * it moves on as fluid at the outlet's pressure (and the reference density) and is removed
+ * when it leaves the zone. The
+ * flow direction is along one axis. */
+enum { RY_OPEN_INLET, RY_OPEN_OUTLET };
+typedef struct ry_open_boundary {
+    int type;
+    double lo[3], hi[3]; /* zone */
+    int axis, sign;      /* flow along +axis (sign 1) or -axis (sign -1) */
+    double velocity[3];  /* inlet velocity [m/s] */
+    double pressure;     /* outlet pressure [Pa] */
+    int material;
+    long count; /* inlet: particles turned fluid; outlet: particles removed */
+} ry_open_boundary;
+
+/* Limits that stop a run as unstable (case section `guard`); 0 disables a limit. */
+typedef struct ry_guard {
+    double max_speed;            /* [m/s] any particle faster */
+    double rho_min, rho_max;     /* fluid density / reference density outside [min, max] */
+    double max_outside_fraction; /* of the fluid particles outside the domain box */
+    int snapshot_every;          /* steps between in-memory copies of the last good state */
+} ry_guard;
+
+/* Checkpoint policy (case section `checkpoint`). */
+typedef struct ry_ckpt_policy {
+    double interval;      /* simulated seconds between checkpoints (0: none) */
+    long every_steps;     /* steps between checkpoints (0: none) */
+    double wall_interval; /* wall seconds between checkpoints (0: none) */
+    int keep;             /* checkpoints kept on disk */
+    int at_end;           /* one at the end of the run */
+    double next_t;        /* next simulated time due */
+    double last_wall;     /* wall time of the last one */
+    long written;         /* written by this process */
+} ry_ckpt_policy;
 
 struct ry_sim {
     int dim;
@@ -93,6 +146,8 @@ struct ry_sim {
     long searches;     /* list builds so far */
     long nl_reuses;    /* steps that reused the list */
     int f_xref;        /* field: positions at the last build (x, y, z consecutive ids) */
+    int nl_restore;    /* after a restart: rebuild the list from the positions at the last
+                          build (xref), without reordering, so that it is the same list */
 
     /* scheme */
     const ry_scheme_type *scheme;
@@ -112,6 +167,15 @@ struct ry_sim {
     int output_index;
     double next_output;
     void *writer; /* output state (pvd entries, series buffer) */
+
+    /* open boundaries */
+    int nopen;
+    ry_open_boundary *open;
+
+    /* reliability */
+    ry_guard guard;
+    ry_ckpt_policy ckpt;
+    void *snapshot; /* the last good state (ry_sim_snapshot_*) */
 };
 
 /* Builds the simulation from a case; checks every key (unknown keys are errors). out_dir may
@@ -176,6 +240,34 @@ double ry_profile_mean(const ry_sim *sim, const ry_profile *pf, int k, int value
 /* Shepard interpolation at x of velocity, pressure and density (dim + 2 values) over fluid and
  * wall particles; 0 (and NANs) when no particle is within the kernel support. */
 int ry_sample_point(const ry_sim *sim, const double *x, double *out);
+
+/* Open boundaries: read from the case with their inlet zones filled (ry_sim_setup calls it),
+ * and the conversions after each step (ry_sim_run calls it): inlet particles past their zone
+ * become fluid and are replaced upstream, fluid entering an outlet zone becomes an outlet
+ * particle, outlet particles past their zone are removed. Schemes move inlet and outlet
+ * particles with their own velocity in their drift. */
+ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err);
+ry_status ry_open_update(ry_sim *sim, ry_error *err);
+/* Volume [m^3] that entered through inlets / left through outlets so far. */
+double ry_open_volume(const ry_sim *sim, int type);
+
+/* Checkpoints (include/ryushi/checkpoint.h for the format). Writes the whole state to path. */
+ry_status ry_sim_checkpoint_write(const ry_sim *sim, const char *path, ry_error *err);
+/* Replaces the state of a simulation set up from the same case (scheme, dimension, materials
+ * and fields must match) by a checkpoint's. */
+ry_status ry_sim_checkpoint_read(ry_sim *sim, const char *path, ry_error *err);
+/* Writes a checkpoint into OUT/checkpoints/ (named by step) and removes all but the newest
+ * `checkpoint.keep`; path (if not NULL) receives the file name. */
+ry_status ry_sim_checkpoint_now(ry_sim *sim, char *path, size_t path_size, ry_error *err);
+/* Restarts from the newest readable checkpoint in dir (a run's output folder or its
+ * checkpoints/ folder); damaged newer ones are skipped and named in *skipped (may be NULL). */
+ry_status ry_sim_restart(ry_sim *sim, const char *dir, char *used, size_t used_size, char *skipped,
+                         size_t skipped_size, ry_error *err);
+/* The last good state: copied every guard.snapshot_every steps; on instability written as
+ * CASE_last_good.vtp and a checkpoint. */
+ry_status ry_sim_snapshot_take(ry_sim *sim, ry_error *err);
+ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_error *err);
+void ry_sim_snapshot_free(ry_sim *sim);
 
 /* Monotonic wall clock in seconds. */
 double ry_wall_time(void);

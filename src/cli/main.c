@@ -9,6 +9,7 @@
 
 #include "cli/cli.h"
 #include "ryushi/case.h"
+#include "ryushi/checkpoint.h"
 #include "ryushi/sim.h"
 
 static volatile sig_atomic_t stop_requested = 0;
@@ -23,14 +24,18 @@ static void usage(FILE *fp) {
             "ryushi %s — meshfree particle methods (SPH, MPS) for fluids and soft solids\n"
             "\n"
             "usage:\n"
-            "  ryushi run CASE [-o DIR] [--threads N] [--set KEY=VALUE]...\n"
-            "        run a case file; output (VTK .vtp/.pvd, series.csv, case_resolved.yaml)\n"
-            "        goes to DIR (default: the case's output.folder)\n"
+            "  ryushi run CASE [-o DIR] [--threads N] [--set KEY=VALUE]... [--restart DIR]\n"
+            "        run a case file; output (VTK .vtp/.pvd, series.csv, case_resolved.yaml,\n"
+            "        checkpoints/) goes to DIR (default: the case's output.folder);\n"
+            "        --restart continues from the newest sound checkpoint in DIR\n"
+            "  ryushi checkpoint FILE\n"
+            "        check a checkpoint file (checksum) and list its records\n"
             "  ryushi info CASE [--set KEY=VALUE]...\n"
             "        set the case up and report particles, memory and methods without running\n"
             "  ryushi bench neighbors [--quick] [--threads N]\n"
             "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
-            "  ryushi validate [dam_break|cavity|cantilever|all] [--quick] [-o DIR] [--threads N]\n"
+            "  ryushi validate [dam_break|cavity|channel|cantilever|all] [--quick] [-o DIR]\n"
+            "        [--threads N]\n"
             "        run the validation cases against their references, with plots\n"
             "        (default output folder out/validate)\n"
             "  ryushi bench [sph] [--quick] [--threads N]\n"
@@ -66,6 +71,7 @@ typedef struct run_args {
     int nset;
     const char **sets;
     int quick;
+    const char *restart; /* --restart DIR */
 } run_args;
 
 /* Parses CASE, -o DIR, --threads N, --set K=V, --quick. */
@@ -88,6 +94,8 @@ static int parse_args(int argc, char **argv, int first, run_args *a, int need_ca
             a->sets[a->nset++] = argv[++i];
         } else if (strncmp(s, "--set=", 6) == 0) {
             a->sets[a->nset++] = s + 6;
+        } else if (strcmp(s, "--restart") == 0 && i + 1 < argc) {
+            a->restart = argv[++i];
         } else if (strcmp(s, "--quick") == 0) {
             a->quick = 1;
         } else if (s[0] == '-' && s[1] != '\0') {
@@ -166,8 +174,14 @@ static int cmd_run(int argc, char **argv) {
     ry_error err = {0};
     ry_case *c;
     ry_sim sim;
+    if (a.restart && !a.out_dir) a.out_dir = a.restart; /* continue in the same folder */
     ry_status st = setup_case(&a, &c, &sim, &err);
     if (st == RY_OK) st = ry_sim_open_output(&sim, c, &err);
+    char used[4300] = "", skipped[2048] = "";
+    if (st == RY_OK && a.restart)
+        st = ry_sim_restart(&sim, a.restart, used, sizeof used, skipped, sizeof skipped, &err);
+    if (skipped[0])
+        fprintf(stderr, "ryushi: warning: skipped damaged checkpoint(s): %s\n", skipped);
     if (st != RY_OK) {
         rc = fail(&err);
         ry_sim_free(&sim);
@@ -178,6 +192,7 @@ static int cmd_run(int argc, char **argv) {
     progress_ctx pc = {isatty(STDERR_FILENO)};
     printf("ryushi %s: case %s, %s, %dD, %zu particles, %d thread(s), output in %s\n", RY_VERSION,
            a.case_path, sim.scheme->name, sim.dim, sim.ps.n, omp_get_max_threads(), sim.out_dir);
+    if (used[0]) printf("restarting from %s (step %ld, t = %.6g s)\n", used, sim.step, sim.t);
     fflush(stdout);
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -185,6 +200,8 @@ static int cmd_run(int argc, char **argv) {
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    /* A file-size limit reached is a write error to report (like a full disk), not a kill. */
+    signal(SIGXFSZ, SIG_IGN);
     ry_run_hooks hooks = {on_progress, &pc, pc.tty ? 0.5 : 10.0, &stop_requested};
     ry_run_stats stats = {0};
     st = ry_sim_run(&sim, &hooks, &stats, &err);
@@ -249,6 +266,32 @@ static int cmd_info(int argc, char **argv) {
     return rc;
 }
 
+static int cmd_checkpoint(int argc, char **argv) {
+    if (argc != 3) return bad_usage("%s", "usage: ryushi checkpoint FILE");
+    ry_error err = {0};
+    ry_ck_reader r;
+    if (ry_ck_open(&r, argv[2], &err) != RY_OK) return fail(&err);
+    printf("checkpoint %s: format version %d, %zu bytes, checksum good, %d records\n", argv[2],
+           RY_CHECKPOINT_VERSION, r.size, r.nrec);
+    for (int i = 0; i < r.nrec; ++i) {
+        const ry_ck_record *rec = &r.rec[i];
+        printf("  %-32s %-4s %10zu", rec->name, ry_ck_type_name(rec->type), rec->count);
+        if (rec->count == 1 && rec->type == RY_CK_F64) {
+            double v;
+            memcpy(&v, rec->data, sizeof v);
+            printf("  %.17g", v);
+        } else if (rec->count == 1 && rec->type == RY_CK_I64) {
+            int64_t v;
+            memcpy(&v, rec->data, sizeof v);
+            printf("  %lld", (long long)v);
+        } else if (rec->type == RY_CK_U8 && rec->count <= 60 && strncmp(rec->name, "meta/", 5) == 0)
+            printf("  %.*s", (int)rec->count, (const char *)rec->data);
+        printf("\n");
+    }
+    ry_ck_close(&r);
+    return 0;
+}
+
 static int cmd_list(int schemes) {
     if (schemes) {
         const ry_scheme_type *const *s = ry_schemes();
@@ -277,6 +320,7 @@ int main(int argc, char **argv) {
     }
     if (strcmp(cmd, "run") == 0) return cmd_run(argc, argv);
     if (strcmp(cmd, "info") == 0) return cmd_info(argc, argv);
+    if (strcmp(cmd, "checkpoint") == 0) return cmd_checkpoint(argc, argv);
     if (strcmp(cmd, "bench") == 0) return ry_cli_bench(argc, argv);
     if (strcmp(cmd, "plot") == 0) return ry_cli_plot(argc, argv);
     if (strcmp(cmd, "validate") == 0) return ry_cli_validate(argc, argv);

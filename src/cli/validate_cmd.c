@@ -287,6 +287,114 @@ static int validate_cavity(vctx *v) {
     return 0;
 }
 
+/* Channel with an inlet and an outlet (Re = 10) against Poiseuille's profile, at 20 and 40
+ * particles across. */
+static int validate_channel(vctx *v) {
+    ry_error err = {0};
+    const double U = 0.1, H = 0.1;
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 2, 1400, 600, &err) != RY_OK) return report(v, &err);
+    ry_plot_panel(p, 0, "u across the channel at x = 0.3 m (mean over t = 3..4 s)", "u / U",
+                  "y / H", &err);
+    ry_plot_panel(p, 1, "volume through the open boundaries", "t (s)", "volume / (U H t_end)",
+                  &err);
+    printf("open-boundary channel, Re = 10, inlet U = 0.1 m/s, outlet p = 0, against Poiseuille\n");
+    printf("  %-8s %10s %12s %10s %10s %12s %8s\n", "across", "particles", "u_c/(1.5U)-1", "rms",
+           "max", "in-out rate", "wall_s");
+    const int nres = v->quick ? 1 : 2;
+    const int N[2] = {20, 40};
+    for (int r = 0; r < nres; ++r) {
+        const double dx = H / N[r];
+        char sp[64], sub[64], in_lo[96], out_hi[96], b1[96], b2[96];
+        snprintf(sp, sizeof sp, "spacing=%.10g", dx);
+        snprintf(sub, sizeof sub, "channel_%d", N[r]);
+        /* Buffer zones four spacings deep, walls three layers, at every resolution. */
+        snprintf(in_lo, sizeof in_lo, "open_boundaries[0].lo=[%.10g,0]", -4 * dx);
+        snprintf(out_hi, sizeof out_hi, "open_boundaries[1].hi=[%.10g,0.1]", 0.4 + 4 * dx);
+        snprintf(b1, sizeof b1, "bodies[1].lo=[%.10g,%.10g]", -8 * dx, -3 * dx);
+        snprintf(b2, sizeof b2, "bodies[2].hi=[%.10g,%.10g]", 0.4 + 8 * dx, 0.1 + 3 * dx);
+        char b1h[96], b2l[96];
+        snprintf(b1h, sizeof b1h, "bodies[1].hi=[%.10g,0]", 0.4 + 8 * dx);
+        snprintf(b2l, sizeof b2l, "bodies[2].lo=[%.10g,0.1]", -8 * dx);
+        const char *sets[] = {sp, in_lo, out_hi, b1, b1h, b2, b2l, "output.vtk=false"};
+        ry_table s, prof;
+        size_t np;
+        double ws;
+        if (run_series(v, "cases/channel_inflow.yaml", sub, 8, sets, &s, &np, &ws, NULL, &err) !=
+            RY_OK) {
+            report(v, &err);
+            continue;
+        }
+        char path[4200], odir[4096];
+        path_join(odir, sizeof odir, v->out, sub);
+        snprintf(path, sizeof path, "%s/profile_u_across.csv", odir);
+        if (ry_table_read(&prof, path, &err) != RY_OK) {
+            ry_table_free(&s);
+            report(v, &err);
+            continue;
+        }
+        int cy = ry_table_col(&prof, "y"), cu = ry_table_col(&prof, "u");
+        double se = 0, emax = 0, uc = NAN;
+        int n = 0;
+        for (size_t q = 0; q < prof.nrows; ++q) {
+            double y = ry_table_at(&prof, q, cy), u = ry_table_at(&prof, q, cu);
+            if (y <= 0.5 * dx || y >= H - 0.5 * dx) continue;
+            double e = (u - 6 * U * y * (H - y) / (H * H)) / (1.5 * U);
+            se += e * e;
+            emax = fmax(emax, fabs(e));
+            if (fabs(y - 0.5 * H) < 1e-9) uc = u;
+            ++n;
+        }
+        const double rms = sqrt(se / n);
+        const size_t last = s.nrows - 1;
+        size_t r1 = 0;
+        const int ct = ry_table_col(&s, "t"), ci = ry_table_col(&s, "inflow_volume"),
+                  co = ry_table_col(&s, "outflow_volume");
+        while (r1 < last && ry_table_at(&s, r1, ct) < ry_table_at(&s, last, ct) - 1.0) ++r1;
+        const double qin = ry_table_at(&s, last, ci) - ry_table_at(&s, r1, ci);
+        const double qout = ry_table_at(&s, last, co) - ry_table_at(&s, r1, co);
+        const double imb = (qout - qin) / qin;
+        printf("  %-8d %10zu %12.4f %10.4f %10.4f %12.4f %8.1f\n", N[r], np, uc / (1.5 * U) - 1,
+               rms, emax, imb, ws);
+        char what[160];
+        snprintf(what, sizeof what,
+                 "%d across: profile within 3 %% RMS of Poiseuille, centreline within 3 %%", N[r]);
+        verdict(v, what, rms <= 0.03 && fabs(uc / (1.5 * U) - 1) <= 0.03);
+        snprintf(what, sizeof what, "%d across: outflow rate = inflow rate within 3 %%", N[r]);
+        verdict(v, what, fabs(imb) <= 0.03);
+        char label[64];
+        snprintf(label, sizeof label, "ryushi, %d across", N[r]);
+        add_series(p, 0, label, &prof, "u", 1 / U, "y", 1 / H, ry_plot_style_line(), &err);
+        snprintf(label, sizeof label, "inflow, %d across", N[r]);
+        add_series(p, 1, label, &s, "t", 1, "inflow_volume", 1 / (U * H * 4.0),
+                   ry_plot_style_line(), &err);
+        snprintf(label, sizeof label, "outflow, %d across", N[r]);
+        add_series(p, 1, label, &s, "t", 1, "outflow_volume", 1 / (U * H * 4.0),
+                   ry_plot_style_line(), &err);
+        ry_table_free(&s);
+        ry_table_free(&prof);
+    }
+    enum { NP = 101 };
+    double yy[NP], uu[NP], tt[2] = {0, 4}, vv[2] = {0, 1};
+    for (int k = 0; k < NP; ++k) {
+        yy[k] = (double)k / (NP - 1);
+        uu[k] = 6 * yy[k] * (1 - yy[k]);
+    }
+    ry_plot_series(p, 0, "Poiseuille", NP, uu, yy, ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE),
+                   &err);
+    ry_plot_series(p, 1, "U H t", 2, tt, vv, ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    ry_plot_legend(p, 0, RY_PLOT_LEGEND_SE, &err);
+    ry_plot_legend(p, 1, RY_PLOT_LEGEND_NW, &err);
+    char png[4096];
+    path_join(png, sizeof png, v->out, "channel_open_boundaries.png");
+    if (ry_plot_write_png(p, png, &err) != RY_OK)
+        report(v, &err);
+    else
+        printf("  plot: %s\n", png);
+    ry_plot_free(p);
+    return 0;
+}
+
 int ry_cli_validate(int argc, char **argv) {
     vctx v = {RY_SOURCE_DIR, "out/validate", 0, 0};
     const char *root_env = getenv("RY_SOURCE_DIR");
@@ -315,14 +423,16 @@ int ry_cli_validate(int argc, char **argv) {
     }
     int all = strcmp(what, "all") == 0;
     if (!all && strcmp(what, "dam_break") != 0 && strcmp(what, "cavity") != 0 &&
-        strcmp(what, "cantilever") != 0) {
+        strcmp(what, "channel") != 0 && strcmp(what, "cantilever") != 0) {
         fprintf(stderr,
-                "ryushi: validate: expected dam_break, cavity, cantilever or all, got '%s'\n",
+                "ryushi: validate: expected dam_break, cavity, channel, cantilever or all, got "
+                "'%s'\n",
                 what);
         return 2;
     }
     if (all || strcmp(what, "dam_break") == 0) validate_dam_break(&v);
     if (all || strcmp(what, "cavity") == 0) validate_cavity(&v);
+    if (all || strcmp(what, "channel") == 0) validate_channel(&v);
     if (all || strcmp(what, "cantilever") == 0)
         ry_cli_validate_cantilever(v.root, v.out, v.quick, &v.failures);
     printf("validate: %s (%d failure(s)); output in %s\n", v.failures ? "FAILED" : "passed",

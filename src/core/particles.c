@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const kind_names[RY_KIND_COUNT] = {"fluid", "wall", "solid"};
+static const char *const kind_names[RY_KIND_COUNT] = {"fluid", "wall", "solid", "inlet", "outlet"};
 
 const char *ry_kind_name(ry_kind kind) {
     return (unsigned)kind < RY_KIND_COUNT ? kind_names[kind] : "unknown";

@@ -1,34 +1,72 @@
 /* The time loop. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "core/writer.h"
 #include "ryushi/sim.h"
+
+/* A checkpoint due after this step by the case's policy. */
+static int checkpoint_due(ry_sim *sim, double eps) {
+    const ry_ckpt_policy *k = &sim->ckpt;
+    if (k->interval > 0 && sim->t >= k->next_t - eps) return 1;
+    if (k->every_steps > 0 && sim->step % k->every_steps == 0) return 1;
+    return k->wall_interval > 0 && ry_wall_time() - k->last_wall >= k->wall_interval;
+}
+
+/* On instability: the last good state goes to disk (VTK and checkpoint), named in the message. */
+static ry_status keep_last_good(ry_sim *sim, ry_status st, ry_error *err) {
+    if (!sim->snapshot) return st;
+    char path[4300];
+    ry_error e = {0};
+    if (ry_sim_snapshot_write(sim, path, sizeof path, &e) == RY_OK) {
+        size_t l = strlen(err->msg);
+        snprintf(err->msg + l, sizeof err->msg - l,
+                 "; the last good state (step %ld, t = %.6g s) is in %s/%s_last_good.vtp and %s",
+                 sim->step, sim->t, sim->out_dir, sim->case_name, path);
+    } else {
+        size_t l = strlen(err->msg);
+        snprintf(err->msg + l, sizeof err->msg - l, "; the last good state was not written: %s",
+                 e.msg);
+    }
+    return st;
+}
 
 ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err) {
     double t0 = ry_wall_time(), last_report = t0;
     long step0 = sim->step;
     double psteps = 0;
     ry_status st = RY_OK;
+    ry_error local;
+    if (!err) err = &local;
     if (sim->output_index == 0) {
         RY_TRY(ry_sim_write_output(sim, err));
         sim->next_output = sim->t + sim->output_interval;
     }
+    /* The state handed in must be sound before it becomes the first "last good" one. */
+    RY_TRY(ry_sim_check(sim, err));
+    const int snap_every = sim->guard.snapshot_every;
+    if (snap_every > 0) RY_TRY(ry_sim_snapshot_take(sim, err));
     const double eps = 1e-12 * sim->t_end;
+    char ckpt[4300] = "";
     while (sim->t < sim->t_end - eps && sim->step < sim->max_steps && !sim->finished) {
         if (hooks && hooks->stop && *hooks->stop) {
-            st = ry_error_set(err, RY_ERR_INTERRUPTED,
-                              "interrupted at step %ld, t = %.6g s; state written", sim->step,
-                              sim->t);
+            st = RY_ERR_INTERRUPTED;
             break;
         }
         double dt;
-        RY_TRY(sim->scheme->stable_dt(sim, sim->scheme_state, &dt, err));
+        st = sim->scheme->stable_dt(sim, sim->scheme_state, &dt, err);
+        if (st != RY_OK) {
+            if (st == RY_ERR_UNSTABLE) keep_last_good(sim, st, err);
+            goto done;
+        }
         if (sim->dt_max > 0 && dt > sim->dt_max) dt = sim->dt_max;
         if (!(dt > 0) || !isfinite(dt)) {
-            return ry_error_set(err, RY_ERR_UNSTABLE,
-                                "unstable at step %ld, t = %.6g s: time step %g is not positive",
-                                sim->step, sim->t, dt);
+            st = ry_error_set(err, RY_ERR_UNSTABLE,
+                              "unstable at step %ld, t = %.6g s: time step %g is not positive",
+                              sim->step, sim->t, dt);
+            keep_last_good(sim, st, err);
+            goto done;
         }
         /* Land on output times and the end time exactly (no sliver steps after them). */
         double target = fmin(sim->next_output, sim->t_end);
@@ -37,15 +75,34 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         else if (sim->t + 2 * dt > target)
             dt = 0.5 * (target - sim->t);
         sim->dt = dt;
-        RY_TRY(sim->scheme->step(sim, sim->scheme_state, dt, err));
+        st = sim->scheme->step(sim, sim->scheme_state, dt, err);
+        if (st != RY_OK) {
+            if (st == RY_ERR_UNSTABLE) keep_last_good(sim, st, err);
+            goto done;
+        }
         sim->t += dt;
         sim->step++;
+        st = ry_open_update(sim, err);
+        if (st != RY_OK) goto done;
         psteps += (double)sim->ps.n;
         st = ry_sim_check(sim, err);
-        if (st != RY_OK) return st; /* the last good output stays on disk */
+        if (st != RY_OK) {
+            keep_last_good(sim, st, err);
+            goto done;
+        }
+        if (snap_every > 0 && sim->step % snap_every == 0) {
+            st = ry_sim_snapshot_take(sim, err);
+            if (st != RY_OK) goto done;
+        }
         if (sim->t >= sim->next_output - eps) {
-            RY_TRY(ry_sim_write_output(sim, err));
+            st = ry_sim_write_output(sim, err);
+            if (st != RY_OK) goto done;
             while (sim->next_output <= sim->t + eps) sim->next_output += sim->output_interval;
+        }
+        if (checkpoint_due(sim, eps)) {
+            while (sim->ckpt.next_t <= sim->t + eps) sim->ckpt.next_t += sim->ckpt.interval;
+            st = ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, err);
+            if (st != RY_OK) goto done;
         }
         double now = ry_wall_time();
         if (hooks && hooks->progress && now - last_report >= hooks->progress_interval_s) {
@@ -56,16 +113,33 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             last_report = now;
         }
     }
-    /* The final state, unless it was just written. */
+    /* A checkpoint of the final state (before its output, so that a restart from it writes
+     * that output again exactly as an uninterrupted run would), then the final state's output
+     * unless it was just written. */
+    if (st == RY_ERR_INTERRUPTED || sim->ckpt.at_end) {
+        ry_error e = {0};
+        ry_status cs = ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, &e);
+        if (cs != RY_OK && st == RY_OK) {
+            *err = e;
+            st = cs;
+            goto done;
+        }
+    }
+    if (st == RY_ERR_INTERRUPTED)
+        ry_error_set(err, RY_ERR_INTERRUPTED,
+                     "interrupted at step %ld, t = %.6g s; state written; checkpoint %s (continue "
+                     "with --restart %s)",
+                     sim->step, sim->t, ckpt[0] ? ckpt : "not written", sim->out_dir);
     if (st == RY_OK || st == RY_ERR_INTERRUPTED) {
         ry_error tmp;
         ry_error *e = st == RY_OK ? err : &tmp;
         if (sim->output_index == 0 || fabs(sim->t - (sim->next_output - sim->output_interval)) >
                                           1e-9 * sim->output_interval) {
             ry_status ws = ry_sim_write_output(sim, e);
-            if (ws != RY_OK && st == RY_OK) return ws;
+            if (ws != RY_OK && st == RY_OK) st = ws;
         }
     }
+done:
     if (stats) {
         stats->steps = sim->step - step0;
         stats->particles = sim->ps.n;

@@ -148,6 +148,44 @@ static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {
     return sim->scheme->init(sim, c, &sim->scheme_state, err);
 }
 
+/* Limits of a sound run; the scheme's init may have set defaults (0: no limit). */
+static ry_status read_guard(ry_sim *sim, ry_case *c, ry_error *err) {
+    ry_guard *g = &sim->guard;
+    double vmax = g->max_speed, rmin = g->rho_min, rmax = g->rho_max, out = 0.01;
+    long every = 10; /* a copy every step would cost ~7 % of a WCSPH step */
+    char where[256];
+    RY_TRY(ry_case_double(c, "guard.max_speed", &vmax, 0.0, 1e300, &g->max_speed, err));
+    RY_TRY(ry_case_double(c, "guard.density_min", &rmin, 0.0, 1.0, &g->rho_min, err));
+    RY_TRY(ry_case_double(c, "guard.density_max", &rmax, 0.0, 1e300, &g->rho_max, err));
+    RY_CHECK(err, g->rho_max == 0 || g->rho_max > 1, RY_ERR_INPUT,
+             "%s: key 'guard.density_max': must exceed 1 (a ratio to the reference density) or "
+             "be 0 (no limit)",
+             ry_case_where(c, "guard.density_max", where, sizeof where));
+    RY_TRY(ry_case_double(c, "guard.max_outside_fraction", &out, 0.0, 1.0, &g->max_outside_fraction,
+                          err));
+    RY_TRY(ry_case_int(c, "guard.snapshot_every", &every, 0, 1000000000L, &every, err));
+    g->snapshot_every = (int)every;
+    return RY_OK;
+}
+
+static ry_status read_checkpoint(ry_sim *sim, ry_case *c, ry_error *err) {
+    ry_ckpt_policy *k = &sim->ckpt;
+    double zero = 0, hour = 3600;
+    long none = 0, keep = 2;
+    int yes = 1;
+    RY_TRY(ry_case_double(c, "checkpoint.interval", &zero, 0.0, 1e300, &k->interval, err));
+    RY_TRY(
+        ry_case_int(c, "checkpoint.every_steps", &none, 0, 1000000000000L, &k->every_steps, err));
+    RY_TRY(
+        ry_case_double(c, "checkpoint.wall_interval", &hour, 0.0, 1e300, &k->wall_interval, err));
+    RY_TRY(ry_case_int(c, "checkpoint.keep", &keep, 1, 1000, &keep, err));
+    k->keep = (int)keep;
+    RY_TRY(ry_case_bool(c, "checkpoint.at_end", &yes, &k->at_end, err));
+    k->next_t = k->interval > 0 ? k->interval : INFINITY;
+    k->last_wall = ry_wall_time();
+    return RY_OK;
+}
+
 static const char *base_name(const char *path, char *buf, size_t size) {
     const char *s = strrchr(path, '/');
     s = s ? s + 1 : path;
@@ -182,6 +220,7 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     ry_status st = ry_geometry_from_case(&sim->ps, c, sim->dx, mnames, sim->nmat, err);
     free(mnames);
     RY_TRY(st);
+    RY_TRY(ry_open_setup(sim, c, err));
 
     /* Mass from the material density on the lattice; density at rest; smoothing length. */
     double vol = pow(sim->dx, sim->dim);
@@ -226,6 +265,8 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(read_probes(sim, c, err));
     RY_TRY(ry_profiles_setup(sim, c, err));
     RY_TRY(read_scheme(sim, c, err));
+    RY_TRY(read_guard(sim, c, err));
+    RY_TRY(read_checkpoint(sim, c, err));
     ry_case_touch(c, "description");
     RY_TRY(ry_case_check_unused(c, err));
     return RY_OK;
@@ -241,6 +282,8 @@ void ry_sim_free(ry_sim *sim) {
     free(sim->mat);
     free(sim->probes);
     ry_profiles_free(sim);
+    ry_sim_snapshot_free(sim);
+    free(sim->open);
     free(sim->out_dir);
     free(sim->case_name);
     memset(sim, 0, sizeof *sim);
@@ -277,6 +320,14 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     }
     const double *x[3];
     const double reach = radius + skin;
+    if (sim->nl_restore && radius == sim->nl_radius && ps->n > 0) {
+        /* After a restart: the list of the last build, from the positions it was built at. */
+        sim->nl_restore = 0;
+        for (int d = 0; d < 3; ++d) x[d] = d < sim->dim ? ps->f[sim->f_xref + d] : NULL;
+        RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
+        return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err);
+    }
+    sim->nl_restore = 0;
     ry_particles_coords(ps, x);
     RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
     if (sim->reorder_every > 0 && sim->searches % sim->reorder_every == 0) {
@@ -306,23 +357,47 @@ size_t ry_sim_count_outside(const ry_sim *sim) {
 
 ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
     const ry_particles *ps = &sim->ps;
-    size_t bad = 0, first = 0;
-    const char *what = NULL;
+    const ry_guard *g = &sim->guard;
+    size_t bad = 0, first = 0, fluid = 0, outside = 0;
+    char why[160], what[160] = "";
+    const double v2max = g->max_speed > 0 ? g->max_speed * g->max_speed : INFINITY;
     for (size_t i = 0; i < ps->n; ++i) {
         const char *w = NULL;
+        double v2 = 0;
+        int out = 0;
         for (int d = 0; d < sim->dim && !w; ++d) {
-            if (!isfinite(ps->f[RY_F_X + d][i]))
+            double x = ps->f[RY_F_X + d][i], v = ps->f[RY_F_VX + d][i];
+            if (!isfinite(x))
                 w = "position is not finite";
-            else if (!isfinite(ps->f[RY_F_VX + d][i]))
+            else if (!isfinite(v))
                 w = "velocity is not finite";
+            v2 += v * v;
+            out |= !(x >= sim->box.lo[d] && x < sim->box.hi[d]);
         }
+        const double rho = ps->f[RY_F_RHO][i];
         if (!w && !isfinite(ps->f[RY_F_P][i])) w = "pressure is not finite";
-        if (!w && !(ps->f[RY_F_RHO][i] > 0 && isfinite(ps->f[RY_F_RHO][i])))
-            w = "density is not positive and finite";
+        if (!w && !(rho > 0 && isfinite(rho))) w = "density is not positive and finite";
+        if (!w && v2 > v2max) {
+            snprintf(why, sizeof why, "speed %.4g m/s exceeds guard.max_speed = %g m/s", sqrt(v2),
+                     g->max_speed);
+            w = why;
+        }
+        if (ps->kind[i] == RY_KIND_FLUID) {
+            ++fluid;
+            outside += out;
+            const double r = rho / sim->mat[ps->material[i]].density;
+            if (!w && ((g->rho_min > 0 && r < g->rho_min) || (g->rho_max > 0 && r > g->rho_max))) {
+                snprintf(why, sizeof why,
+                         "density %.6g kg/m^3 is %.4g times the reference, outside "
+                         "guard.density_min..density_max = %g..%g",
+                         rho, r, g->rho_min, g->rho_max);
+                w = why;
+            }
+        }
         if (w) {
             if (!bad) {
                 first = i;
-                what = w;
+                snprintf(what, sizeof what, "%s", w);
             }
             ++bad;
         }
@@ -334,6 +409,28 @@ ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
                             sim->step, sim->t, bad, (long long)ps->id[first],
                             ry_kind_name((ry_kind)ps->kind[first]), ps->f[RY_F_X][first],
                             ps->f[RY_F_Y][first], sim->dim > 2 ? ps->f[RY_F_Z][first] : 0.0, what);
+    }
+    if (g->max_outside_fraction > 0 && fluid > 0 &&
+        (double)outside > g->max_outside_fraction * (double)fluid) {
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (ps->kind[i] != RY_KIND_FLUID) continue;
+            int out = 0;
+            for (int d = 0; d < sim->dim; ++d) {
+                double x = ps->f[RY_F_X + d][i];
+                out |= !(x >= sim->box.lo[d] && x < sim->box.hi[d]);
+            }
+            if (out) {
+                first = i;
+                break;
+            }
+        }
+        return ry_error_set(err, RY_ERR_UNSTABLE,
+                            "unstable at step %ld, t = %.6g s: %zu of %zu fluid particles (more "
+                            "than guard.max_outside_fraction = %g) have left the domain; first: "
+                            "particle id %lld at (%g, %g, %g)",
+                            sim->step, sim->t, outside, fluid, g->max_outside_fraction,
+                            (long long)ps->id[first], ps->f[RY_F_X][first], ps->f[RY_F_Y][first],
+                            sim->dim > 2 ? ps->f[RY_F_Z][first] : 0.0);
     }
     return RY_OK;
 }

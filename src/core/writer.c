@@ -103,3 +103,72 @@ ry_status ry_sim_write_output(ry_sim *sim, ry_error *err) {
     sim->output_index++;
     return RY_OK;
 }
+
+ry_status ry_writer_save(const ry_sim *sim, ry_ck_writer *ck, ry_error *err) {
+    const writer *w = sim->writer;
+    RY_CHECK(err, w != NULL, RY_ERR_INTERNAL, "checkpoint written before the writer was opened");
+    size_t len = 0;
+    for (int i = 0; i < w->n; ++i) len += strlen(w->files[i]) + 1;
+    char *names = malloc(len + 1);
+    RY_CHECK(err, names != NULL, RY_ERR_NOMEM, "out of memory");
+    size_t at = 0;
+    for (int i = 0; i < w->n; ++i) at += (size_t)sprintf(names + at, "%s\n", w->files[i]);
+    ry_status st = ry_ck_put_text(ck, "output/pvd_files", names, len, err);
+    free(names);
+    RY_TRY(st);
+    RY_TRY(ry_ck_put(ck, "output/pvd_times", RY_CK_F64, w->times, (size_t)w->n, err));
+    return ry_ck_put_text(ck, "output/series", w->csv, w->csv_len, err);
+}
+
+ry_status ry_writer_load(ry_sim *sim, const ry_ck_reader *ck, ry_error *err) {
+    writer *w = sim->writer;
+    RY_CHECK(err, w != NULL, RY_ERR_INTERNAL, "checkpoint read before the writer was opened");
+    char *names = NULL, *csv = NULL;
+    size_t len, csv_len;
+    RY_TRY(ry_ck_get_text(ck, "output/pvd_files", &names, &len, err));
+    ry_status st = ry_ck_get_text(ck, "output/series", &csv, &csv_len, err);
+    int n = 0;
+    for (size_t i = 0; i < len; ++i) n += names[i] == '\n';
+    char **files = calloc((size_t)n + 1, sizeof *files);
+    double *times = malloc(((size_t)n + 1) * sizeof *times);
+    if (st == RY_OK && (!files || !times)) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    if (st == RY_OK) st = ry_ck_get(ck, "output/pvd_times", RY_CK_F64, (size_t)n, times, err);
+    char *p = names;
+    for (int i = 0; st == RY_OK && i < n; ++i) {
+        char *nl = strchr(p, '\n');
+        *nl = '\0';
+        if (!*p || strchr(p, '/') || strchr(p, '"') || strchr(p, '<') || strchr(p, '&')) {
+            st = ry_error_set(err, RY_ERR_INPUT,
+                              "checkpoint %s: record 'output/pvd_files': bad file name", ck->path);
+            break;
+        }
+        files[i] = ry_strdup(p);
+        if (!files[i]) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+        p = nl + 1;
+    }
+    free(names);
+    if (st != RY_OK) {
+        for (int i = 0; i < n; ++i) free(files[i]);
+        free(files);
+        free(times);
+        free(csv);
+        return st;
+    }
+    for (int i = 0; i < w->n; ++i) free(w->files[i]);
+    free(w->files);
+    free(w->times);
+    free(w->csv);
+    w->files = files;
+    w->times = times;
+    w->n = w->cap = n;
+    w->csv = csv;
+    w->csv_len = csv_len;
+    w->csv_cap = csv_len + 1;
+    char path[4096];
+    if (n > 0) {
+        snprintf(path, sizeof path, "%s/%s.pvd", sim->out_dir, sim->case_name);
+        RY_TRY(ry_pvd_write(path, w->n, w->files, w->times, err));
+    }
+    snprintf(path, sizeof path, "%s/series.csv", sim->out_dir);
+    return ry_atomic_write(path, w->csv, w->csv_len, err);
+}

@@ -1,4 +1,5 @@
 /* VTK XML PolyData writer with raw appended binary arrays, and the .pvd collection. */
+#include <errno.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -118,10 +119,12 @@ ry_status ry_vtk_write_particles(const char *path, const ry_particles *ps, doubl
     if (!bad) bad = write_array(fp, &pts, n, buf, chunk) != 0;
     if (!bad) bad = write_array(fp, &conn, n, buf, chunk) != 0;
     if (!bad) bad = write_array(fp, &offs, n, buf, chunk) != 0;
+    int e = errno, oom = buf == NULL;
     free(buf);
     if (bad) {
         ry_atomic_abort(&f);
-        return ry_error_set(err, RY_ERR_IO, "writing '%s' failed", path);
+        return ry_error_set(err, RY_ERR_IO, "writing '%s' failed: %s", path,
+                            oom ? "out of memory" : strerror(e));
     }
     fprintf(fp, "\n  </AppendedData>\n</VTKFile>\n");
     return ry_atomic_commit(&f, err);

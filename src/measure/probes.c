@@ -120,7 +120,33 @@ static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
     return RY_OK;
 }
 
+static ry_status probe_inflow(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = ry_open_volume(sim, RY_OPEN_INLET);
+    return RY_OK;
+}
+
+static ry_status probe_outflow(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = ry_open_volume(sim, RY_OPEN_OUTLET);
+    return RY_OK;
+}
+
+static ry_status probe_fluid_particles(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    size_t k = 0;
+    for (size_t i = 0; i < sim->ps.n; ++i) k += sim->ps.kind[i] == RY_KIND_FLUID;
+    *v = (double)k;
+    return RY_OK;
+}
+
 static const ry_probe p_mass = {"mass", "total fluid mass [kg]", probe_mass};
+static const ry_probe p_inflow = {
+    "inflow_volume", "volume that entered through inlets [m^3] (particles x dx^dim)", probe_inflow};
+static const ry_probe p_outflow = {
+    "outflow_volume", "volume that left through outlets [m^3] (particles x dx^dim)", probe_outflow};
+static const ry_probe p_nfluid = {"fluid_particles", "number of fluid particles",
+                                  probe_fluid_particles};
 static const ry_probe p_kin = {"kinetic_energy", "fluid kinetic energy [J]", probe_kinetic};
 static const ry_probe p_vmax = {"max_speed", "largest fluid speed [m/s]", probe_max_speed};
 static const ry_probe p_out = {"outside", "particles outside the domain", probe_outside};
@@ -135,6 +161,9 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_out,
                                              &p_front,
                                              &p_in_wall,
+                                             &p_inflow,
+                                             &p_outflow,
+                                             &p_nfluid,
                                              &ry_probe_tip_deflection,
                                              &ry_probe_tip_axial,
                                              &ry_probe_residual,

@@ -664,6 +664,7 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
+    if (!s->built) RY_TRY(build_reference(sim, s, err)); /* e.g. after a restart */
     if (!s->have_forces) RY_TRY(evaluate(sim, s, err));
     const double keep = s->relax == RELAX_VISCOUS ? (1 - 0.5 * s->damping * dt) : 1.0;
     const double gain = s->relax == RELAX_VISCOUS ? 1.0 / (1 + 0.5 * s->damping * dt) : 1.0;
@@ -699,10 +700,23 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     return RY_OK;
 }
 
+static int solid_vars(void *state, ry_state_var *v, int max) {
+    solid *s = state;
+    const ry_state_var all[] = {{"residual", &s->residual, NULL, NULL},
+                                {"ke_prev", &s->ke_prev, NULL, NULL},
+                                {"peaks", NULL, NULL, &s->peaks},
+                                {"have_forces", NULL, &s->have_forces, NULL}};
+    int n = (int)(sizeof all / sizeof all[0]);
+    if (n > max) n = max;
+    memcpy(v, all, (size_t)n * sizeof *v);
+    return n;
+}
+
 const ry_scheme_type ry_scheme_solid = {
     "solid",    "elastic solid, total-Lagrangian SPH with corrected kernel gradients (seed 000)",
     solid_init, solid_dt,
-    solid_step, solid_free};
+    solid_step, solid_free,
+    solid_vars, NULL};
 
 /* ---- probes ------------------------------------------------------------------------------- */
 

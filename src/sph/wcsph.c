@@ -105,6 +105,10 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
             pb_def = fmax(pb_def, sim->mat[m].density * w->c0 * w->c0);
         RY_TRY(ry_case_positive(c, "scheme.transport_pressure", &pb_def, &w->p_tvf, err));
     }
+    if (w->tvf)
+        RY_CHECK(err, sim->nopen == 0, RY_ERR_INPUT,
+                 "%s: key 'scheme.transport_velocity': open boundaries need it off",
+                 ry_case_where(c, "scheme.transport_velocity", where, sizeof where));
     if (w->variable_h)
         RY_CHECK(err, w->density == DENS_CONTINUITY, RY_ERR_INPUT,
                  "%s: key 'scheme.variable_h': needs scheme.density: continuity",
@@ -159,6 +163,13 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     int hydro;
     RY_TRY(ry_case_bool(c, "scheme.hydrostatic_init", &no, &hydro, err));
     if (hydro) hydrostatic_init(sim, w);
+    /* A sound run stays far below the sound speed and within a few per cent of the reference
+     * density; beyond these it has failed (checked every step; case section `guard`). */
+    if (w->eos != EOS_IDEAL_GAS) {
+        sim->guard.max_speed = w->c0;
+        sim->guard.rho_min = 0.5;
+        sim->guard.rho_max = 2.0;
+    }
     if (w->eos == EOS_IDEAL_GAS) {
         double e0;
         RY_TRY(ry_case_positive(c, "scheme.initial_energy", NULL, &e0, err));
@@ -311,11 +322,14 @@ static void wall_pass(ry_sim *sim, const wcsph *w) {
     const int periodic = is_periodic(sim);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_WALL) continue;
+        /* Inlet buffers take their pressure from the fluid too (their velocity is prescribed);
+         * outlet buffers keep the pressure set at the outlet. */
+        const int inlet = ps->kind[i] == RY_KIND_INLET;
+        if (ps->kind[i] != RY_KIND_WALL && !inlet) continue;
         double sw = 0, sp = 0, srx = 0, sv[3] = {0, 0, 0};
         for (size_t q = off[i]; q < off[i + 1]; ++q) {
             uint32_t j = nb[q];
-            if (ps->kind[j] != RY_KIND_FLUID) continue;
+            if (ps->kind[j] != RY_KIND_FLUID && ps->kind[j] != RY_KIND_OUTLET) continue;
             double dx[3] = {0, 0, 0}, r2 = 0;
             for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
             if (periodic) ry_box_min_image(&sim->box, dx);
@@ -335,7 +349,8 @@ static void wall_pass(ry_sim *sim, const wcsph *w) {
             p[i] = pw;
             rho[i] = eos_density(w, mat, pw);
             for (int d = 0; d < dim; ++d)
-                ps->f[w->f_vg[d]][i] = 2.0 * ps->f[RY_F_VX + d][i] - sv[d] / sw;
+                ps->f[w->f_vg[d]][i] =
+                    inlet ? ps->f[RY_F_VX + d][i] : 2.0 * ps->f[RY_F_VX + d][i] - sv[d] / sw;
         } else {
             p[i] = w->p_background;
             rho[i] = w->rho0m[mat];
@@ -401,11 +416,12 @@ static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
     double *restrict pack = w->pack;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
-        const int fluid = kind[i] == RY_KIND_FLUID;
+        const int fluid = kind[i] == RY_KIND_FLUID, wall = kind[i] == RY_KIND_WALL;
         const double rhoi = rho[i], inv_rho = 1.0 / rhoi;
         const double mui = w->laminar ? rhoi * mat[matl[i]].viscosity : 0.0;
-        /* Viscous coupling: fluid, and no-slip walls (through their ghost velocity). */
-        const double visi = (fluid || noslip) ? 1.0 : 0.0;
+        /* Viscous coupling: fluid, open-boundary buffers, and no-slip walls (through their
+         * ghost velocity). */
+        const double visi = (!wall || noslip) ? 1.0 : 0.0;
         if (tvf) {
             vol[i] = m[i] / rhoi;
             mu[i] = mui;
@@ -413,7 +429,7 @@ static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
             vis[i] = visi;
         }
         /* Velocity seen by viscous terms: the ghost velocity on no-slip walls. */
-        if (fluid || !noslip)
+        if (!wall || !noslip)
             for (int d = 0; d < dim; ++d) vg[d][i] = v[d][i];
         double *restrict P = pack + i * stride;
         for (int d = 0; d < dim; ++d) {
@@ -428,7 +444,7 @@ static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
         S[PK_MU] = mui;
         S[PK_CS] = sound_speed(w, rhoi, p[i]);
         S[PK_MASS] = m[i];
-        S[PK_FLUID] = fluid ? 1.0 : 0.0;
+        S[PK_FLUID] = fluid || kind[i] == RY_KIND_OUTLET ? 1.0 : 0.0;
         S[PK_VISC] = visi;
         S[PK_H] = hh[i];
     }
@@ -525,7 +541,7 @@ enum {
 static inline __attribute__((always_inline)) void
 fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const int dim,
                const ry_kernel_type kt, const int general, double *amax2, double *vmax2) {
-    if (c->kind[i] != RY_KIND_FLUID) return;
+    if (c->kind[i] != RY_KIND_FLUID && c->kind[i] != RY_KIND_OUTLET) return;
     const size_t stride = PK_STRIDE(dim);
     const int X = PK_X(dim), U = PK_U(dim), UG = PK_UG(dim), S = PK_S(dim, 0);
     const double *restrict pack = c->pack;
@@ -877,7 +893,13 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     /* Kick (half step) and drift; then predict v and rho at the new time for the forces. */
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        /* Outlet buffers move as fluid, at the outlet's pressure and the reference density. */
+        const int outlet = ps->kind[i] == RY_KIND_OUTLET;
+        if (ps->kind[i] != RY_KIND_FLUID && !outlet) {
+            if (ps->kind[i] == RY_KIND_INLET) /* inflow buffers drift at the inlet velocity */
+                for (int d = 0; d < dim; ++d) ps->f[RY_F_X + d][i] += dt * ps->f[RY_F_VX + d][i];
+            continue;
+        }
         for (int d = 0; d < dim; ++d) {
             double vh = ps->f[RY_F_VX + d][i] + 0.5 * dt * ps->f[RY_F_AX + d][i];
             ps->f[w->f_vh[d]][i] = vh;
@@ -891,6 +913,7 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
             }
             ps->f[RY_F_VX + d][i] = vh + 0.5 * dt * ps->f[RY_F_AX + d][i];
         }
+        if (outlet) continue;
         if (cont) {
             double rh = ps->f[RY_F_RHO][i] + 0.5 * dt * ps->f[RY_F_DRHO][i];
             ps->f[w->f_rhoh][i] = rh;
@@ -912,9 +935,10 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     n = ps->n;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        if (ps->kind[i] != RY_KIND_FLUID && ps->kind[i] != RY_KIND_OUTLET) continue;
         for (int d = 0; d < dim; ++d)
             ps->f[RY_F_VX + d][i] = ps->f[w->f_vh[d]][i] + 0.5 * dt * ps->f[RY_F_AX + d][i];
+        if (ps->kind[i] == RY_KIND_OUTLET) continue;
         if (cont) ps->f[RY_F_RHO][i] = ps->f[w->f_rhoh][i] + 0.5 * dt * ps->f[RY_F_DRHO][i];
         if (w->energy) ps->f[RY_F_E][i] = ps->f[w->f_eh][i] + 0.5 * dt * ps->f[RY_F_DE][i];
         if (w->variable_h) {
@@ -925,7 +949,21 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     return RY_OK;
 }
 
+static int wcsph_vars(void *state, ry_state_var *v, int max) {
+    wcsph *w = state;
+    const ry_state_var all[] = {{"vmax", &w->vmax, NULL, NULL},
+                                {"amax", &w->amax, NULL, NULL},
+                                {"numax", &w->numax, NULL, NULL},
+                                {"hmax", &w->hmax, NULL, NULL},
+                                {"have_forces", NULL, &w->have_forces, NULL}};
+    int n = (int)(sizeof all / sizeof all[0]);
+    if (n > max) n = max;
+    memcpy(v, all, (size_t)n * sizeof *v);
+    return n;
+}
+
 const ry_scheme_type ry_scheme_wcsph = {
     "wcsph",    "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog)",
     wcsph_init, wcsph_dt,
-    wcsph_step, wcsph_free};
+    wcsph_step, wcsph_free,
+    wcsph_vars, NULL};

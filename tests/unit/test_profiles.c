@@ -15,7 +15,8 @@
 #include "ryushi/csv.h"
 #include "ryushi/sim.h"
 
-static char tmpdir[256];
+#define RY_TMPDIR_PREFIX "ryushi_profiles_"
+#include "tmpdir.h"
 
 /* A 1 x 1 box of fluid at rest (scheme `static`), 40 x 40 particles, with two profiles. */
 static const char *case_text(char *buf, size_t size, const char *profiles) {
@@ -149,23 +150,10 @@ static void test_bad_profiles(void **state) {
     }
 }
 
-static int make_tmp(void **state) {
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/ryushi_profiles_XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int remove_tmp(void **state) {
-    (void)state;
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
-}
-
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_linear_field_and_average),
         cmocka_unit_test(test_bad_profiles),
     };
-    return cmocka_run_group_tests(tests, make_tmp, remove_tmp);
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

@@ -1,0 +1,212 @@
+/* Open boundaries: inflow and outflow buffer zones (after Federico et al. 2012, Eur. J. Mech.
+ * B/Fluids 34: 35, and Tafuni et al. 2018, Comput. Methods Appl. Mech. Engrg. 342: 604: velocity
+ * prescribed and pressure taken from the fluid at an inlet, pressure prescribed at an outlet). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ryushi/sim.h"
+
+static const char *const type_names[] = {"inlet", "outlet", NULL};
+
+/* The flow axis of a vector with exactly one non-zero component; -1 otherwise. */
+static int flow_axis(const double *v, int dim, int *sign) {
+    int axis = -1;
+    for (int d = 0; d < dim; ++d) {
+        if (v[d] == 0) continue;
+        if (axis >= 0) return -1;
+        axis = d;
+        *sign = v[d] > 0 ? 1 : -1;
+    }
+    return axis;
+}
+
+/* Fills an inlet zone with buffer particles on the case lattice (cell centres, as boxes are). */
+static ry_status fill_inlet(ry_sim *sim, const ry_open_boundary *b, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    long cnt[3] = {1, 1, 1};
+    for (int d = 0; d < dim; ++d) cnt[d] = lround((b->hi[d] - b->lo[d]) / sim->dx);
+    const size_t total = (size_t)cnt[0] * (size_t)cnt[1] * (size_t)cnt[2];
+    size_t first;
+    RY_TRY(ry_particles_add(ps, total, &first, err));
+    size_t i = first;
+    for (long a = 0; a < cnt[0]; ++a)
+        for (long bb = 0; bb < cnt[1]; ++bb)
+            for (long cc = 0; cc < cnt[2]; ++cc, ++i) {
+                const long idx[3] = {a, bb, cc};
+                for (int d = 0; d < dim; ++d) {
+                    ps->f[RY_F_X + d][i] = b->lo[d] + ((double)idx[d] + 0.5) * sim->dx;
+                    ps->f[RY_F_VX + d][i] = b->velocity[d];
+                }
+                ps->kind[i] = RY_KIND_INLET;
+                ps->material[i] = (uint8_t)b->material;
+            }
+    return RY_OK;
+}
+
+ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
+    size_t n;
+    RY_TRY(ry_case_count(c, "open_boundaries", &n, err));
+    if (n == 0) return RY_OK;
+    sim->open = calloc(n, sizeof *sim->open);
+    RY_CHECK(err, sim->open != NULL, RY_ERR_NOMEM, "out of memory");
+    sim->nopen = (int)n;
+    const char **mnames = calloc((size_t)sim->nmat + 1, sizeof *mnames);
+    RY_CHECK(err, mnames != NULL, RY_ERR_NOMEM, "out of memory");
+    for (int m = 0; m < sim->nmat; ++m) mnames[m] = sim->mat[m].name;
+    ry_status st = RY_OK;
+    char k[128], where[256];
+    const int dim = sim->dim;
+    for (size_t q = 0; q < n && st == RY_OK; ++q) {
+        ry_open_boundary *b = &sim->open[q];
+        snprintf(k, sizeof k, "open_boundaries[%zu].type", q);
+        if ((st = ry_case_choice(c, k, NULL, type_names, &b->type, err)) != RY_OK) break;
+        snprintf(k, sizeof k, "open_boundaries[%zu].lo", q);
+        if ((st = ry_case_vector(c, k, NULL, dim, b->lo, err)) != RY_OK) break;
+        snprintf(k, sizeof k, "open_boundaries[%zu].hi", q);
+        if ((st = ry_case_vector(c, k, NULL, dim, b->hi, err)) != RY_OK) break;
+        for (int d = 0; d < dim && st == RY_OK; ++d) {
+            double len = (b->hi[d] - b->lo[d]) / sim->dx;
+            if (!(len >= 0.999) || fabs(len - round(len)) > 1e-6)
+                st = ry_error_set(err, RY_ERR_INPUT,
+                                  "%s: key '%s': the zone must span a whole number (at least one) "
+                                  "of particle spacings in every direction (%g spacings)",
+                                  ry_case_where(c, k, where, sizeof where), k, len);
+        }
+        if (st != RY_OK) break;
+        double dir[3] = {0, 0, 0};
+        if (b->type == RY_OPEN_INLET) {
+            snprintf(k, sizeof k, "open_boundaries[%zu].velocity", q);
+            if ((st = ry_case_vector(c, k, NULL, dim, b->velocity, err)) != RY_OK) break;
+            memcpy(dir, b->velocity, sizeof dir);
+            int mat = 0;
+            snprintf(k, sizeof k, "open_boundaries[%zu].material", q);
+            if ((st = ry_case_choice(c, k, mnames[0], mnames, &mat, err)) != RY_OK) break;
+            b->material = mat;
+        } else {
+            double zero = 0;
+            snprintf(k, sizeof k, "open_boundaries[%zu].direction", q);
+            if ((st = ry_case_vector(c, k, NULL, dim, dir, err)) != RY_OK) break;
+            snprintf(k, sizeof k, "open_boundaries[%zu].pressure", q);
+            if ((st = ry_case_double(c, k, &zero, -1e300, 1e300, &b->pressure, err)) != RY_OK)
+                break;
+        }
+        b->axis = flow_axis(dir, dim, &b->sign);
+        if (b->axis < 0) {
+            st = ry_error_set(err, RY_ERR_INPUT,
+                              "%s: key '%s': the flow must be along one axis (exactly one "
+                              "non-zero component)",
+                              ry_case_where(c, k, where, sizeof where), k);
+            break;
+        }
+        if (b->type == RY_OPEN_INLET) st = fill_inlet(sim, b, err);
+    }
+    free(mnames);
+    return st;
+}
+
+/* Signed distance past a face along a boundary's flow direction. */
+static inline double past(const ry_open_boundary *b, const double *x, double face) {
+    return (double)b->sign * (x[b->axis] - face);
+}
+
+static int inside_across(const ry_open_boundary *b, const double *x, int dim) {
+    for (int d = 0; d < dim; ++d)
+        if (d != b->axis && !(x[d] >= b->lo[d] && x[d] < b->hi[d])) return 0;
+    return 1;
+}
+
+ry_status ry_open_update(ry_sim *sim, ry_error *err) {
+    if (sim->nopen == 0) return RY_OK;
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    size_t n = ps->n, nspawn = 0, nremove = 0;
+    uint8_t *remove = NULL;
+    size_t *spawn = NULL; /* pairs (particle, inlet): copies enter upstream */
+    ry_status st = RY_OK;
+    for (size_t i = 0; i < n; ++i) {
+        double x[3] = {0, 0, 0};
+        for (int d = 0; d < dim; ++d) x[d] = ps->f[RY_F_X + d][i];
+        for (int q = 0; q < sim->nopen; ++q) {
+            ry_open_boundary *b = &sim->open[q];
+            const double downstream = b->sign > 0 ? b->hi[b->axis] : b->lo[b->axis];
+            const double upstream = b->sign > 0 ? b->lo[b->axis] : b->hi[b->axis];
+            if (b->type == RY_OPEN_INLET && ps->kind[i] == RY_KIND_INLET &&
+                inside_across(b, x, dim) && past(b, x, downstream) >= 0 &&
+                past(b, x, upstream) < 2 * (b->hi[b->axis] - b->lo[b->axis])) {
+                if (!spawn) spawn = malloc(2 * n * sizeof *spawn);
+                if (!spawn) {
+                    st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+                    goto done;
+                }
+                spawn[2 * nspawn] = i;
+                spawn[2 * nspawn++ + 1] = (size_t)q;
+                ps->kind[i] = RY_KIND_FLUID;
+                for (int d = 0; d < dim; ++d) ps->f[RY_F_AX + d][i] = 0;
+                ps->f[RY_F_DRHO][i] = 0;
+                b->count++;
+                break;
+            }
+            if (b->type == RY_OPEN_OUTLET && inside_across(b, x, dim)) {
+                if (ps->kind[i] == RY_KIND_FLUID && past(b, x, upstream) >= 0 &&
+                    past(b, x, downstream) < 0) {
+                    ps->kind[i] = RY_KIND_OUTLET;
+                    ps->f[RY_F_P][i] = b->pressure;
+                    ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
+                    break;
+                }
+                if (ps->kind[i] == RY_KIND_OUTLET && past(b, x, downstream) >= 0) {
+                    if (!remove) remove = calloc(n, 1);
+                    if (!remove) {
+                        st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+                        goto done;
+                    }
+                    remove[i] = 1;
+                    nremove++;
+                    b->count++;
+                    break;
+                }
+            }
+        }
+    }
+    if (nspawn) {
+        size_t first;
+        st = ry_particles_add(ps, nspawn, &first, err);
+        if (st != RY_OK) goto done;
+        for (size_t s = 0; s < nspawn; ++s) {
+            const size_t i = spawn[2 * s], j = first + s;
+            const ry_open_boundary *b = &sim->open[spawn[2 * s + 1]];
+            for (int f = 0; f < ps->nfields; ++f)
+                if (ps->f[f]) ps->f[f][j] = ps->f[f][i];
+            ps->f[RY_F_X + b->axis][j] -= (double)b->sign * (b->hi[b->axis] - b->lo[b->axis]);
+            for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][j] = b->velocity[d];
+            ps->kind[j] = RY_KIND_INLET;
+            ps->material[j] = (uint8_t)b->material;
+        }
+    }
+    if (nremove) {
+        if (ps->n > n) { /* the new inlet particles stay */
+            uint8_t *r = realloc(remove, ps->n);
+            if (!r) {
+                st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+                goto done;
+            }
+            remove = r;
+            memset(remove + n, 0, ps->n - n);
+        }
+        ry_particles_remove(ps, remove);
+    }
+done:
+    free(remove);
+    free(spawn);
+    return st;
+}
+
+double ry_open_volume(const ry_sim *sim, int type) {
+    double v = 0, cell = pow(sim->dx, sim->dim);
+    for (int q = 0; q < sim->nopen; ++q)
+        if (sim->open[q].type == type) v += (double)sim->open[q].count * cell;
+    return v;
+}

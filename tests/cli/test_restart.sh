@@ -1,0 +1,145 @@
+#!/bin/sh
+# Checkpoints and restart: a run stopped (by step count or by SIGTERM) and continued with
+# --restart ends bitwise identical to an uninterrupted run (VTK files, .pvd, series.csv,
+# profiles), for each scheme, with inflow and outflow, on another thread count too; a damaged newest checkpoint is
+# skipped for the one before it; a truncated or corrupted checkpoint is rejected by name.
+# usage: test_restart.sh RYUSHI SOURCE_DIR
+set -u
+RY=$1
+SRC=$2
+T=$(mktemp -d /tmp/ryushi_restart_XXXXXX)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { echo "FAIL: $*"; fail=$((fail + 1)); }
+
+# same A B: every result file of run A is byte for byte in run B
+same() {
+    n=0
+    for f in "$1"/*.vtp "$1"/*.pvd "$1"/*.csv; do
+        [ -f "$f" ] || continue
+        n=$((n + 1))
+        if ! cmp -s "$f" "$2/$(basename "$f")"; then bad "$3: $(basename "$f") differs"; return; fi
+    done
+    if [ "$n" -lt 3 ]; then bad "$3: only $n result files"; return; fi
+    ok
+}
+
+# run NAME CASE ARGS...: a run with its output in $T/NAME; the exit code in $rc
+run() {
+    name=$1; case_file=$2; shift 2
+    "$RY" run "$case_file" -o "$T/$name" "$@" > "$T/$name.log" 2>&1
+    rc=$?
+}
+
+DAM="$SRC/cases/dam_break_seed.yaml"
+DAMSET="--set spacing=0.0125 --set time.end=0.2 --set time.output_interval=0.02"
+
+# 1. WCSPH dam break: stopped at step 700 (not an output time), continued on 1 thread.
+# shellcheck disable=SC2086
+run full "$DAM" $DAMSET --threads 2
+[ "$rc" -eq 0 ] || bad "uninterrupted dam break exited $rc: $(cat "$T/full.log")"
+# shellcheck disable=SC2086
+run part "$DAM" $DAMSET --threads 2 --set time.max_steps=700
+[ -f "$T/part/checkpoints/checkpoint_0000000700.ryc" ] || bad "no checkpoint at step 700"
+# shellcheck disable=SC2086
+"$RY" run "$DAM" $DAMSET --threads 1 --restart "$T/part" > "$T/part2.log" 2>&1 ||
+    bad "restart failed: $(cat "$T/part2.log")"
+grep -q "restarting from .*checkpoint_0000000700.ryc (step 700" "$T/part2.log" ||
+    bad "restart did not name its checkpoint: $(cat "$T/part2.log")"
+same "$T/full" "$T/part" "dam break restarted at step 700"
+
+# 2. Periodic checkpoints (every 250 steps, keep 2): restart from the older of the two, after
+# the newest was damaged (truncated).
+# shellcheck disable=SC2086
+run per "$DAM" $DAMSET --set time.max_steps=1000 --set checkpoint.every_steps=250 \
+    --set checkpoint.keep=2 --set checkpoint.at_end=false
+n=$(ls "$T/per/checkpoints" | wc -l)
+[ "$n" -eq 2 ] || bad "checkpoint.keep=2 left $n checkpoints"
+newest="$T/per/checkpoints/checkpoint_0000001000.ryc"
+head -c 5000 "$newest" > "$T/trunc.ryc"
+cp "$T/trunc.ryc" "$newest"
+out=$("$RY" checkpoint "$newest" 2>&1)
+[ $? -eq 2 ] && printf '%s' "$out" | grep -q "checkpoint_0000001000.ryc: truncated" && ok ||
+    bad "truncated checkpoint not rejected by name: $out"
+# shellcheck disable=SC2086
+"$RY" run "$DAM" $DAMSET --restart "$T/per" > "$T/per2.log" 2>&1 || bad "restart past a damaged checkpoint failed: $(cat "$T/per2.log")"
+grep -q "skipped damaged checkpoint" "$T/per2.log" && grep -q "step 750" "$T/per2.log" && ok ||
+    bad "damaged checkpoint not reported/skipped: $(cat "$T/per2.log")"
+same "$T/full" "$T/per" "dam break restarted from the older checkpoint"
+
+# 3. A flipped byte anywhere fails the checksum.
+cp "$T/part/checkpoints/checkpoint_0000000700.ryc" "$T/flip.ryc"
+printf '\377' | dd of="$T/flip.ryc" bs=1 seek=4000 conv=notrunc 2>/dev/null
+out=$("$RY" checkpoint "$T/flip.ryc" 2>&1)
+[ $? -eq 2 ] && printf '%s' "$out" | grep -q "checksum mismatch" && ok ||
+    bad "corrupted checkpoint not rejected: $out"
+out=$("$RY" checkpoint "$T/part/checkpoints/checkpoint_0000000700.ryc" 2>&1)
+printf '%s' "$out" | grep -q "checksum good" && printf '%s' "$out" | grep -q "field/x" && ok ||
+    bad "checkpoint listing: $out"
+
+# 4. SIGTERM mid-run: exit 130 with a checkpoint, continued to the same end.
+# shellcheck disable=SC2086
+"$RY" run "$DAM" $DAMSET --set time.dt_max=2e-5 -o "$T/sig" > "$T/sig.log" 2>&1 &
+pid=$!
+sleep 1
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+[ "$rc" -eq 130 ] || bad "SIGTERM: exit $rc, expected 130: $(cat "$T/sig.log")"
+grep -q "continue with --restart" "$T/sig.log" && ok || bad "no checkpoint named: $(cat "$T/sig.log")"
+# shellcheck disable=SC2086
+run sigfull "$DAM" $DAMSET --set time.dt_max=2e-5
+# shellcheck disable=SC2086
+"$RY" run "$DAM" $DAMSET --set time.dt_max=2e-5 --restart "$T/sig" > "$T/sig2.log" 2>&1 ||
+    bad "restart after SIGTERM failed: $(cat "$T/sig2.log")"
+same "$T/sigfull" "$T/sig" "dam break restarted after SIGTERM"
+
+# 5. Lid-driven cavity with time-averaged profiles (transport-velocity WCSPH).
+CAV="$SRC/cases/cavity_re100.yaml"
+CAVSET="--set spacing=0.05 --set time.end=0.6 --set time.output_interval=0.1"
+CAVSET="$CAVSET --set profiles[0].average_from=0.2 --set profiles[1].average_from=0.2"
+# shellcheck disable=SC2086
+run cav "$CAV" $CAVSET
+# shellcheck disable=SC2086
+run cavp "$CAV" $CAVSET --set time.max_steps=333
+# shellcheck disable=SC2086
+"$RY" run "$CAV" $CAVSET --restart "$T/cavp" > "$T/cavp2.log" 2>&1 || bad "cavity restart failed: $(cat "$T/cavp2.log")"
+same "$T/cav" "$T/cavp" "cavity restarted at step 333"
+
+# 6. Channel with an inlet and an outlet: particles created and removed during the run.
+CH="$SRC/cases/channel_inflow.yaml"
+CHSET="--set spacing=0.01 --set time.end=0.8 --set time.output_interval=0.1"
+CHSET="$CHSET --set open_boundaries[0].lo=[-0.04,0] --set open_boundaries[1].hi=[0.44,0.1]"
+CHSET="$CHSET --set bodies[1].lo=[-0.06,-0.03] --set bodies[2].hi=[0.46,0.13]"
+CHSET="$CHSET --set profiles[0].average_from=0.4"
+# shellcheck disable=SC2086
+run ch "$CH" $CHSET
+[ "$rc" -eq 0 ] || bad "channel exited $rc: $(cat "$T/ch.log")"
+# shellcheck disable=SC2086
+run chp "$CH" $CHSET --set time.max_steps=555
+# shellcheck disable=SC2086
+"$RY" run "$CH" $CHSET --restart "$T/chp" > "$T/chp2.log" 2>&1 || bad "channel restart failed: $(cat "$T/chp2.log")"
+same "$T/ch" "$T/chp" "channel with inflow and outflow restarted at step 555"
+
+# 7. Elastic solid (total-Lagrangian, kinetic damping) stopped at step 150.
+BEAM="$SRC/cases/cantilever.yaml"
+BEAMSET="--set time.max_steps=400 --set time.output_interval=0.5 --set output.vtk=true"
+# shellcheck disable=SC2086
+run beam "$BEAM" $BEAMSET
+# shellcheck disable=SC2086
+run beamp "$BEAM" $BEAMSET --set time.max_steps=150
+# shellcheck disable=SC2086
+"$RY" run "$BEAM" $BEAMSET --restart "$T/beamp" > "$T/beamp2.log" 2>&1 || bad "solid restart failed: $(cat "$T/beamp2.log")"
+same "$T/beam" "$T/beamp" "cantilever restarted at step 150"
+
+# 8. A checkpoint does not fit another case.
+out=$("$RY" run "$BEAM" --restart "$T/part" -o "$T/wrong" 2>&1)
+[ $? -eq 2 ] && printf '%s' "$out" | grep -q "written for scheme 'wcsph', the case has 'solid'" &&
+    ok || bad "checkpoint of another case accepted: $out"
+out=$("$RY" run "$DAM" --restart "$T/nothing" 2>&1)
+[ $? -eq 2 ] && printf '%s' "$out" | grep -q "no checkpoint" && ok || bad "missing checkpoint: $out"
+
+echo "restart tests: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,112 @@
+/* Open boundaries (WCSPH): the channel of cases/channel_inflow.yaml, an inlet at U = 0.1 m/s
+ * and an outlet at p = 0, Re = 10. The inflow is exactly U H t (to half a particle layer), in-
+ * and outflow balance once the flow is developed, the profile downstream is Poiseuille's, and
+ * no fluid leaves through the walls. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "ryushi/validate.h"
+
+static char root[2048], tmpdir[256];
+
+static double col_at(const ry_table *t, size_t row, const char *name) {
+    int c = ry_table_col(t, name);
+    assert_true(c >= 0);
+    return ry_table_at(t, row, c);
+}
+
+static void test_channel_poiseuille(void **state) {
+    (void)state;
+    const double U = 0.1, H = 0.1, L = 0.4, dx = 0.005;
+    char cp[4096], od[512], sp[600];
+    snprintf(cp, sizeof cp, "%s/cases/channel_inflow.yaml", root);
+    snprintf(od, sizeof od, "%s/channel", tmpdir);
+    const char *sets[] = {"output.vtk=false",
+                          "measure=[fluid_particles, inflow_volume, outflow_volume, outside]"};
+    ry_sim sim;
+    ry_run_stats stats;
+    ry_error err = {0};
+    ry_status st = ry_run_case_file(cp, 2, sets, od, &sim, &stats, &err);
+    if (st != RY_OK) fail_msg("%s", err.msg);
+    ry_sim_free(&sim);
+    ry_table s, prof;
+    snprintf(sp, sizeof sp, "%s/series.csv", od);
+    assert_int_equal(ry_table_read(&s, sp, &err), RY_OK);
+    snprintf(sp, sizeof sp, "%s/profile_u_across.csv", od);
+    assert_int_equal(ry_table_read(&prof, sp, &err), RY_OK);
+
+    /* Inflow: every row within half a layer (0.5 dx H) of U H t, 0.6 % at the end. */
+    double worst = 0;
+    for (size_t r = 0; r < s.nrows; ++r) {
+        double t = col_at(&s, r, "t"), v = col_at(&s, r, "inflow_volume");
+        worst = fmax(worst, fabs(v - U * H * t));
+    }
+    const size_t last = s.nrows - 1;
+    const double tend = col_at(&s, last, "t");
+    printf("channel: inflow %.6g m^2 for U H t = %.6g (largest gap %.3g layers), outflow %.6g\n",
+           col_at(&s, last, "inflow_volume"), U * H * tend, worst / (dx * H),
+           col_at(&s, last, "outflow_volume"));
+    assert_true(worst <= 0.5 * dx * H * (1 + 1e-9));
+
+    /* Balance over the last second: the fluid count steady within 2 % of the channel's
+     * (L H / dx^2 = 1600), outflow rate within 3 % of the inflow rate. */
+    size_t r1 = 0;
+    while (r1 < last && col_at(&s, r1, "t") < tend - 1.0 - 1e-9) ++r1;
+    const double nominal = L * H / (dx * dx);
+    for (size_t r = r1; r <= last; ++r)
+        assert_true(fabs(col_at(&s, r, "fluid_particles") - nominal) <= 0.02 * nominal);
+    const double qin = (col_at(&s, last, "inflow_volume") - col_at(&s, r1, "inflow_volume"));
+    const double qout = (col_at(&s, last, "outflow_volume") - col_at(&s, r1, "outflow_volume"));
+    printf("  last second: inflow %.6g, outflow %.6g m^2; fluid particles %.0f (channel %.0f)\n",
+           qin, qout, col_at(&s, last, "fluid_particles"), nominal);
+    assert_true(fabs(qout - qin) <= 0.03 * qin);
+    assert_true(ry_column_max(&s, "outside") == 0);
+
+    /* Profile at x = 0.3 m, averaged over t = 3..4 s, against u = 6 U y (H - y) / H^2: RMS and
+     * largest deviation over the interior points relative to the centreline speed 1.5 U. */
+    double se = 0, emax = 0, umid = 0;
+    int np = 0;
+    for (size_t r = 0; r < prof.nrows; ++r) {
+        double y = col_at(&prof, r, "y"), u = col_at(&prof, r, "u");
+        if (y <= 0.5 * dx || y >= H - 0.5 * dx) continue;
+        double ue = 6 * U * y * (H - y) / (H * H), e = (u - ue) / (1.5 * U);
+        se += e * e;
+        emax = fmax(emax, fabs(e));
+        if (fabs(y - 0.5 * H) < 1e-9) umid = u;
+        ++np;
+    }
+    const double rms = sqrt(se / np);
+    printf("  Poiseuille at x = 0.3 m: centreline %.4f m/s (1.5 U = %.4f), rms %.4f, max %.4f of "
+           "1.5 U over %d points\n",
+           umid, 1.5 * U, rms, emax, np);
+    assert_true(np >= 15);
+    assert_true(fabs(umid - 1.5 * U) <= 0.03 * 1.5 * U);
+    assert_true(rms <= 0.03);
+    assert_true(emax <= 0.06);
+    ry_table_free(&s);
+    ry_table_free(&prof);
+}
+
+int main(void) {
+    const char *r = getenv("RY_SOURCE_DIR");
+    snprintf(root, sizeof root, "%s", r ? r : ".");
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/ryushi_open_XXXXXX");
+    if (!mkdtemp(tmpdir)) return 1;
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_channel_poiseuille),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+    if (system(cmd) != 0) rc = rc ? rc : 1;
+    return rc;
+}
