@@ -34,31 +34,42 @@ static ry_status stl_path(ry_case *c, const char *file, char **out, ry_error *er
     return RY_OK;
 }
 
-static ry_status read_stl(ry_particles *ps, ry_case *c, size_t i, double dx, int fill,
-                          const ry_body_style *st, size_t *added, ry_error *err) {
-    char k[96];
+typedef struct stl_body {
     const char *file;
-    double scale, one = 1, shift[3], zero[3] = {0, 0, 0};
-    long layers = 0, three = 3;
-    RY_TRY(ry_case_string(c, key(k, sizeof k, i, "file"), NULL, &file, err));
-    RY_TRY(ry_case_positive(c, key(k, sizeof k, i, "scale"), &one, &scale, err));
-    RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "translate"), zero, 3, shift, err));
-    if (fill == FILL_SURFACE) {
-        RY_TRY(ry_case_int(c, key(k, sizeof k, i, "layers"), &three, 1, 20, &layers, err));
-    } else if (ry_case_has(c, key(k, sizeof k, i, "layers"))) {
+    double scale, shift[3];
+    long layers; /* 0: fill the volume */
+} stl_body;
+
+static ry_status read_stl_keys(ry_case *c, size_t i, int fill, stl_body *b, ry_error *err) {
+    char k[96];
+    double one = 1, zero[3] = {0, 0, 0};
+    long three = 3;
+    b->layers = 0;
+    RY_TRY(ry_case_string(c, key(k, sizeof k, i, "file"), NULL, &b->file, err));
+    RY_TRY(ry_case_positive(c, key(k, sizeof k, i, "scale"), &one, &b->scale, err));
+    RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "translate"), zero, 3, b->shift, err));
+    if (fill == FILL_SURFACE)
+        return ry_case_int(c, key(k, sizeof k, i, "layers"), &three, 1, 20, &b->layers, err);
+    if (ry_case_has(c, key(k, sizeof k, i, "layers"))) {
         char where[256];
         return ry_error_set(err, RY_ERR_INPUT, "%s: key '%s': layers needs fill: surface",
                             ry_case_where(c, k, where, sizeof where), k);
     }
+    return RY_OK;
+}
+
+/* Reads, checks and fills the surface of an STL body. */
+static ry_status fill_stl_body(ry_particles *ps, ry_case *c, const stl_body *b, double dx,
+                               const ry_body_style *st, size_t *added, ry_error *err) {
     char *path;
-    RY_TRY(stl_path(c, file, &path, err));
+    RY_TRY(stl_path(c, b->file, &path, err));
     ry_stl m;
     ry_status s = ry_stl_read(&m, path, err);
     free(path);
     RY_TRY(s);
-    ry_stl_transform(&m, scale, shift);
+    ry_stl_transform(&m, b->scale, b->shift);
     s = ry_stl_check(&m, ry_stl_default_tolerance(&m), err);
-    if (s == RY_OK) s = ry_fill_stl(ps, &m, dx, (int)layers, st, added, err);
+    if (s == RY_OK) s = ry_fill_stl(ps, &m, dx, (int)b->layers, st, added, err);
     ry_stl_free(&m);
     return s;
 }
@@ -138,11 +149,14 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
                          err);
         break;
     }
-    case BODY_STL:
+    case BODY_STL: {
         RY_CHECK(err, dim == 3, RY_ERR_INPUT, "%s: key '%s': an STL body needs dimension 3",
                  ry_case_where(c, key(k, sizeof k, i, "type"), where, sizeof where), k);
-        s = read_stl(ps, c, i, dx, fill, &st, &added, err);
+        stl_body b;
+        RY_TRY(read_stl_keys(c, i, fill, &b, err));
+        s = fill_stl_body(ps, c, &b, dx, &st, &added, err);
         break;
+    }
     default:
         return ry_error_set(err, RY_ERR_INTERNAL, "unhandled body type %d", type);
     }
