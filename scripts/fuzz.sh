@@ -22,6 +22,7 @@ for t in $TARGETS; do
     esac
     export OMP_NUM_THREADS=1
     export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
+    export LSAN_OPTIONS=suppressions=$(pwd)/fuzz/lsan.supp
     export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
     # Regression inputs first: every past finding must stay fixed.
     if ls fuzz/regressions/$t/* >/dev/null 2>&1; then
