@@ -2,8 +2,16 @@
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD ?= build
 ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
+# Seconds per fuzz target: `make fuzz` 60; the short run in `make test` 60 on CI (CI=true), else 10.
+FUZZ_SECONDS ?= 60
+ifeq ($(CI),true)
+TEST_FUZZ_SECONDS ?= 60
+else
+TEST_FUZZ_SECONDS ?= 10
+endif
 
-.PHONY: all deps build demo test test-fast asan format format-check clean
+.PHONY: all deps build demo test test-fast asan fuzz fuzz-build format format-check clean
 
 all: build
 
@@ -20,10 +28,12 @@ demo: build
 	@sh scripts/demo.sh $(BUILD)/ryushi
 
 # Whole suite: release build (unit, physics and command-line tests), then the unit tests
-# again under AddressSanitizer and UndefinedBehaviorSanitizer.
-test: build asan
+# again under AddressSanitizer and UndefinedBehaviorSanitizer, then a short fuzz run of every
+# fuzz target (which must find nothing).
+test: build asan fuzz-build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -L unit -j $(JOBS)
+	sh scripts/fuzz.sh $(FUZZ_BUILD) $(TEST_FUZZ_SECONDS)
 
 test-fast: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -34,6 +44,16 @@ $(ASAN_BUILD)/CMakeCache.txt:
 asan: deps $(ASAN_BUILD)/CMakeCache.txt
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 
+$(FUZZ_BUILD)/CMakeCache.txt:
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRY_FUZZ=ON
+
+fuzz-build: deps $(FUZZ_BUILD)/CMakeCache.txt
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+
+# libFuzzer on the case-file reader and the STL reader, FUZZ_SECONDS each (fuzz/, docs/reliability.md).
+fuzz: fuzz-build
+	sh scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
 format:
 	clang-format -i $$(git ls-files '*.c' '*.h')
 
@@ -41,4 +61,4 @@ format-check:
 	clang-format --dry-run --Werror $$(git ls-files '*.c' '*.h')
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -36,6 +36,14 @@ ry_status ry_fill_tank(ry_particles *ps, const double *lo, const double *hi, int
                        int open_top, const double *lid_velocity, double dx, const ry_body_style *st,
                        size_t *added, ry_error *err);
 
+struct ry_stl;
+/* A closed STL surface (3D; checked with ry_stl_check first) on the lattice (i + 1/2) dx anchored
+ * at the origin. layers = 0: every lattice point inside the surface (winding number of a ray
+ * along +x); layers > 0: only the inside points closer than layers * dx to the surface (a wall
+ * shell). */
+ry_status ry_fill_stl(ry_particles *ps, const struct ry_stl *m, double dx, int layers,
+                      const ry_body_style *st, size_t *added, ry_error *err);
+
 /* Reads the case's `bodies` sequence and fills them. material_names has nmat entries. */
 ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,
                                 const char *const *material_names, int nmat, ry_error *err);

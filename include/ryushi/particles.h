@@ -84,6 +84,12 @@ typedef struct ry_particles {
 const char *ry_kind_name(ry_kind kind);
 int ry_kind_from_name(const char *name); /* -1 when unknown */
 
+/* Upper bound on the particles of any set in this process (default UINT32_MAX). Adding beyond it
+ * is an RY_ERR_RANGE error naming the limit; bodies also refuse to examine more than 8 times as
+ * many lattice points. Meant for limiting memory (fuzzing, shared machines). */
+void ry_particles_set_limit(size_t max);
+size_t ry_particles_limit(void);
+
 /* Sets up an empty set with the core fields. */
 ry_status ry_particles_init(ry_particles *ps, int dim, ry_error *err);
 void ry_particles_free(ry_particles *ps);

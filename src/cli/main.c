@@ -48,7 +48,9 @@ static void usage(FILE *fp) {
             "\n"
             "KEY is a dotted path into the case file, e.g. --set time.end=0.3 or\n"
             "--set bodies[0].hi=[0.25,0.5]. Exit codes: 0 success, 1 internal error,\n"
-            "2 bad input, 3 i/o error, 4 unstable run, 130 interrupted.\n",
+            "2 bad input, 3 i/o error, 4 unstable run, 130 interrupted.\n"
+            "RY_MAX_PARTICLES=N in the environment limits the particles of a case (an error\n"
+            "beyond it, exit code 2).\n",
             RY_VERSION);
 }
 
@@ -308,6 +310,14 @@ int main(int argc, char **argv) {
     if (argc < 2) {
         usage(stderr);
         return 2;
+    }
+    const char *limit = getenv("RY_MAX_PARTICLES");
+    if (limit && *limit) {
+        char *end;
+        unsigned long long v = strtoull(limit, &end, 10);
+        if (*end || v == 0 || limit[0] == '-')
+            return bad_usage("RY_MAX_PARTICLES: expected a positive whole number, got '%s'", limit);
+        ry_particles_set_limit((size_t)v);
     }
     const char *cmd = argv[1];
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {

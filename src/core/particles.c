@@ -123,10 +123,21 @@ ry_status ry_particles_reserve(ry_particles *ps, size_t cap, ry_error *err) {
     return RY_OK;
 }
 
+static size_t particle_limit = UINT32_MAX;
+
+void ry_particles_set_limit(size_t max) {
+    particle_limit = max < UINT32_MAX ? max : UINT32_MAX;
+}
+
+size_t ry_particles_limit(void) {
+    return particle_limit;
+}
+
 ry_status ry_particles_add(ry_particles *ps, size_t count, size_t *first, ry_error *err) {
     size_t need = ps->n + count;
-    if (need > UINT32_MAX)
-        return ry_error_set(err, RY_ERR_RANGE, "too many particles (%zu) for one process", need);
+    if (need > particle_limit || need < count)
+        return ry_error_set(err, RY_ERR_RANGE, "more than %zu particles (the particle limit)",
+                            particle_limit);
     if (need > ps->cap) {
         size_t cap = ps->cap ? ps->cap : 1024;
         while (cap < need) cap += cap / 2;

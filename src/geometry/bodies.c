@@ -1,17 +1,77 @@
 /* The case file's `bodies` section: primitives filled with particles. */
 #include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "core/cell_key.h"
 #include "ryushi/geometry.h"
+#include "ryushi/stl.h"
 
-static const char *const body_types[] = {"box", "sphere", "circle", "cylinder", "tank", NULL};
-enum { BODY_BOX, BODY_SPHERE, BODY_CIRCLE, BODY_CYLINDER, BODY_TANK };
+static const char *const body_types[] = {"box",  "sphere", "circle", "cylinder",
+                                         "tank", "stl",    NULL};
+enum { BODY_BOX, BODY_SPHERE, BODY_CIRCLE, BODY_CYLINDER, BODY_TANK, BODY_STL };
 static const char *const kind_names[] = {"fluid", "wall", "solid", NULL};
+static const char *const fill_names[] = {"volume", "surface", NULL};
+enum { FILL_VOLUME, FILL_SURFACE };
 
 static const char *key(char *buf, size_t size, size_t i, const char *name) {
     snprintf(buf, size, "bodies[%zu].%s", i, name);
     return buf;
+}
+
+/* The STL file of body i, relative to the case file's folder unless absolute. */
+static ry_status stl_path(ry_case *c, const char *file, char **out, ry_error *err) {
+    const char *name = ry_case_name(c);
+    const char *slash = strrchr(name, '/');
+    size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - name) + 1;
+    size_t n = strlen(file);
+    *out = malloc(dir + n + 1);
+    RY_CHECK(err, *out != NULL, RY_ERR_NOMEM, "out of memory");
+    memcpy(*out, name, dir);
+    memcpy(*out + dir, file, n + 1);
+    return RY_OK;
+}
+
+typedef struct stl_body {
+    const char *file;
+    double scale, shift[3];
+    long layers; /* 0: fill the volume */
+} stl_body;
+
+static ry_status read_stl_keys(ry_case *c, size_t i, int fill, stl_body *b, ry_error *err) {
+    char k[96];
+    double one = 1, zero[3] = {0, 0, 0};
+    long three = 3;
+    b->layers = 0;
+    RY_TRY(ry_case_string(c, key(k, sizeof k, i, "file"), NULL, &b->file, err));
+    RY_TRY(ry_case_positive(c, key(k, sizeof k, i, "scale"), &one, &b->scale, err));
+    RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "translate"), zero, 3, b->shift, err));
+    if (fill == FILL_SURFACE)
+        return ry_case_int(c, key(k, sizeof k, i, "layers"), &three, 1, 20, &b->layers, err);
+    if (ry_case_has(c, key(k, sizeof k, i, "layers"))) {
+        char where[256];
+        return ry_error_set(err, RY_ERR_INPUT, "%s: key '%s': layers needs fill: surface",
+                            ry_case_where(c, k, where, sizeof where), k);
+    }
+    return RY_OK;
+}
+
+/* Reads, checks and fills the surface of an STL body. */
+static ry_status fill_stl_body(ry_particles *ps, ry_case *c, const stl_body *b, double dx,
+                               const ry_body_style *st, size_t *added, ry_error *err) {
+    char *path;
+    RY_TRY(stl_path(c, b->file, &path, err));
+    ry_stl m;
+    ry_status s = ry_stl_read(&m, path, err);
+    free(path);
+    RY_TRY(s);
+    ry_stl_transform(&m, b->scale, b->shift);
+    s = ry_stl_check(&m, ry_stl_default_tolerance(&m), err);
+    if (s == RY_OK) s = ry_fill_stl(ps, &m, dx, (int)b->layers, st, added, err);
+    ry_stl_free(&m);
+    return s;
 }
 
 static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
@@ -21,8 +81,12 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
     int type;
     RY_TRY(ry_case_choice(c, key(k, sizeof k, i, "type"), NULL, body_types, &type, err));
     ry_body_style st = {0};
-    RY_TRY(ry_case_choice(c, key(k, sizeof k, i, "kind"), type == BODY_TANK ? "wall" : "fluid",
-                          kind_names, &st.kind, err));
+    int fill = FILL_VOLUME;
+    if (type == BODY_STL)
+        RY_TRY(ry_case_choice(c, key(k, sizeof k, i, "fill"), "volume", fill_names, &fill, err));
+    RY_TRY(ry_case_choice(c, key(k, sizeof k, i, "kind"),
+                          type == BODY_TANK || fill == FILL_SURFACE ? "wall" : "fluid", kind_names,
+                          &st.kind, err));
     if (nmat > 0) {
         RY_TRY(ry_case_choice(c, key(k, sizeof k, i, "material"), material_names[0], material_names,
                               &st.material, err));
@@ -85,6 +149,14 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
                          err);
         break;
     }
+    case BODY_STL: {
+        RY_CHECK(err, dim == 3, RY_ERR_INPUT, "%s: key '%s': an STL body needs dimension 3",
+                 ry_case_where(c, key(k, sizeof k, i, "type"), where, sizeof where), k);
+        stl_body b;
+        RY_TRY(read_stl_keys(c, i, fill, &b, err));
+        s = fill_stl_body(ps, c, &b, dx, &st, &added, err);
+        break;
+    }
     default:
         return ry_error_set(err, RY_ERR_INTERNAL, "unhandled body type %d", type);
     }
@@ -99,12 +171,85 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
     return RY_OK;
 }
 
+/* Overlapping bodies: a particle within half a spacing, in every direction, of a particle of an
+ * earlier body (inside its lattice cell). Particles are binned in cells one spacing wide; a
+ * match lies in the same or a neighbouring cell. body[i] is the body of particle i. */
+static ry_status check_overlaps(const ry_particles *ps, ry_case *c, const uint32_t *body, double dx,
+                                ry_error *err) {
+    size_t n = ps->n;
+    char where[256], k[64];
+    ry_cell_key *r = malloc((n ? n : 1) * sizeof *r);
+    RY_CHECK(err, r != NULL, RY_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < n; ++i) {
+        r[i] = (ry_cell_key){{0, 0, 0}, (uint32_t)i};
+        for (int d = 0; d < ps->dim; ++d) {
+            double q = floor(ps->f[RY_F_X + d][i] / dx);
+            if (!(fabs(q) < 1e15)) {
+                free(r);
+                snprintf(k, sizeof k, "bodies[%u]", (unsigned)body[i]);
+                return ry_error_set(
+                    err, RY_ERR_INPUT, "%s: body '%s': coordinate %g too large for the spacing %g",
+                    ry_case_where(c, k, where, sizeof where), k, ps->f[RY_F_X + d][i], dx);
+            }
+            r[i].c[d] = (int64_t)q;
+        }
+    }
+    qsort(r, n, sizeof *r, ry_cell_key_cmp);
+    const double half = 0.5 * dx * (1 - 1e-9);
+    const int dz = ps->dim > 2 ? 1 : 0;
+    size_t hit = SIZE_MAX, other = 0;
+    for (size_t a = 0; a < n; ++a) {
+        size_t i = r[a].i;
+        for (int ox = -1; ox <= 1; ++ox)
+            for (int oy = -1; oy <= 1; ++oy)
+                for (int oz = -dz; oz <= dz; ++oz) {
+                    int64_t cell[3] = {r[a].c[0] + ox, r[a].c[1] + oy, r[a].c[2] + oz};
+                    for (size_t b = ry_cell_key_find(r, n, cell);
+                         b < n && ry_cell_same(r[b].c, cell); ++b) {
+                        size_t j = r[b].i;
+                        if (body[j] >= body[i] || i >= hit) continue;
+                        int near = 1;
+                        for (int d = 0; d < ps->dim; ++d)
+                            near &= fabs(ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j]) < half;
+                        if (near) {
+                            hit = i;
+                            other = j;
+                        }
+                    }
+                }
+    }
+    free(r);
+    if (hit == SIZE_MAX) return RY_OK;
+    snprintf(k, sizeof k, "bodies[%u]", (unsigned)body[hit]);
+    return ry_error_set(err, RY_ERR_INPUT,
+                        "%s: body '%s' overlaps body 'bodies[%u]': its particle at (%g, %g%s) "
+                        "lies within half a spacing of one of that body's particles",
+                        ry_case_where(c, k, where, sizeof where), k, (unsigned)body[other],
+                        ps->f[RY_F_X][hit], ps->f[RY_F_Y][hit], ps->dim > 2 ? ", ..." : "");
+}
+
 ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,
                                 const char *const *material_names, int nmat, ry_error *err) {
     size_t n;
     RY_TRY(ry_case_count(c, "bodies", &n, err));
     RY_CHECK(err, n > 0, RY_ERR_INPUT, "%s: key 'bodies': at least one body is required",
              ry_case_name(c));
-    for (size_t i = 0; i < n; ++i) RY_TRY(read_body(ps, c, i, dx, material_names, nmat, err));
-    return RY_OK;
+    size_t *start = malloc((n + 1) * sizeof *start);
+    RY_CHECK(err, start != NULL, RY_ERR_NOMEM, "out of memory");
+    ry_status st = RY_OK;
+    for (size_t i = 0; i < n && st == RY_OK; ++i) {
+        start[i] = ps->n;
+        st = read_body(ps, c, i, dx, material_names, nmat, err);
+    }
+    start[n] = ps->n;
+    uint32_t *body = st == RY_OK ? malloc((ps->n ? ps->n : 1) * sizeof *body) : NULL;
+    if (st == RY_OK && !body) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    if (st == RY_OK) {
+        for (size_t b = 0; b < n; ++b)
+            for (size_t i = start[b]; i < start[b + 1]; ++i) body[i] = (uint32_t)b;
+        st = check_overlaps(ps, c, body, dx, err);
+    }
+    free(body);
+    free(start);
+    return st;
 }

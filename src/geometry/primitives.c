@@ -22,9 +22,12 @@ static ry_status fill_lattice(ry_particles *ps, const double *lo, const long *n,
     long nz = dim > 2 ? n[2] : 1;
     size_t total = (size_t)n[0] * (size_t)n[1] * (size_t)nz;
     size_t count = 0;
-    RY_CHECK(err, total < (size_t)UINT32_MAX, RY_ERR_RANGE,
+    size_t limit = ry_particles_limit();
+    limit = limit < UINT32_MAX / 8 ? 8 * limit : UINT32_MAX;
+    RY_CHECK(err, total < limit, RY_ERR_RANGE,
              "body would hold %zu lattice points: spacing too small for its size", total);
-    RY_TRY(ry_particles_reserve(ps, ps->n + total, err));
+    size_t room = ry_particles_limit() > ps->n ? ry_particles_limit() - ps->n : 0;
+    RY_TRY(ry_particles_reserve(ps, ps->n + (total < room ? total : room), err));
     for (long k = 0; k < nz; ++k)
         for (long j = 0; j < n[1]; ++j)
             for (long i = 0; i < n[0]; ++i) {

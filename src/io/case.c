@@ -7,7 +7,7 @@
  * output writes them.
  *
  * Design decisions:
- *   - anchors, aliases (and so merge keys) and explicit tags are rejected with an error;
+ *   - anchors, aliases (and so merge keys), explicit tags and directives are rejected;
  *   - a number is a plain (unquoted) scalar that parses entirely as a finite decimal number;
  *   - booleans are exactly the plain scalars true and false;
  *   - an empty value ("key:") is neither a number nor a string: getters reject it;
@@ -705,6 +705,16 @@ static ry_status on_event(builder *b, struct fy_event *e) {
 static ry_status build_tree(const char *name, const char *origin, const char *text, size_t len,
                             node **out, ry_error *err) {
     *out = NULL;
+    /* Directives (%YAML, %TAG) have no use in a case, and libfyaml 0.7 can loop forever on a
+     * malformed one (found by fuzzing): refused before parsing. */
+    for (size_t i = 0, line = 1; i < len; ++i) {
+        if (text[i] == '%' && (i == 0 || text[i - 1] == '\n')) {
+            builder b = {.name = name, .origin = origin, .err = err};
+            return build_error(&b, origin ? 0 : (int)line,
+                               "YAML directives (lines starting with '%%') are not supported");
+        }
+        if (text[i] == '\n') ++line;
+    }
     diag_sink sink;
     sink.last[0] = '\0';
     struct fy_diag_cfg dcfg;

@@ -293,7 +293,10 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     ry_status st = RY_OK;
     for (int m = 0; m < sim->nmat && st == RY_OK; ++m)
         if (used[m]) st = read_material(sim, c, s, m, err);
-    RY_TRY(st);
+    if (st != RY_OK) {
+        free(used);
+        return st;
+    }
     /* Time step from the fastest wave. With dynamic relaxation only the free (solid) particles
      * count: the ones next to a stiffer clamp get a larger fictitious mass instead. */
     for (size_t i = 0; i < ps->n; ++i) {

@@ -5,21 +5,7 @@
 set -u
 RY=$1
 SRC=$2
-T=$(mktemp -d /tmp/ryushi_cli_XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fail=$((fail + 1)); }
-
-# expect CODE PATTERN -- command...: exit code and a pattern in stdout+stderr
-expect() {
-    code=$1; pat=$2; shift 2
-    out=$("$@" 2>&1); rc=$?
-    if [ "$rc" -ne "$code" ]; then bad "'$*' exited $rc, expected $code: $out"; return; fi
-    if ! printf '%s' "$out" | grep -q -- "$pat"; then bad "'$*': no '$pat' in: $out"; return; fi
-    ok
-}
+. "$SRC/tests/cli/lib.sh"
 
 expect 0 "usage:" "$RY" --help
 expect 0 "ryushi 0" "$RY" --version
@@ -73,5 +59,4 @@ grep -q "interrupted" "$T/int.log" && ok || bad "no interruption message"
 [ -s "$T/int/series.csv" ] && [ -s "$T/int/dam_break_seed.pvd" ] && ok || bad "no output after SIGINT"
 ls "$T/int" | grep -q "tmp" && bad "temporary files left after SIGINT" || ok
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

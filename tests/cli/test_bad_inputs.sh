@@ -1,0 +1,71 @@
+#!/bin/sh
+# The catalogue of bad inputs (tests/bad_inputs/): each case file stops the set-up with its exact
+# message (file, line, key or value) and exit code 2 (3 for i/o), and nothing crashes. Also a
+# missing or unreadable case file, an output folder that cannot be written, and the particle limit.
+# usage: test_bad_inputs.sh RYUSHI SOURCE_DIR
+set -u
+RY=$1
+SRC=$2
+D="$SRC/tests/bad_inputs"
+. "$SRC/tests/cli/lib.sh"
+
+# case NAME CODE TEXT: tests/bad_inputs/NAME.yaml through `ryushi run` (nothing may be written)
+case_() {
+    expect_text "$2" "$D/$1.yaml$3" "$RY" run "$D/$1.yaml" -o "$T/out_$1"
+    [ -e "$T/out_$1" ] && bad "$1: an output folder was created"
+}
+
+case_ unknown_key 2 ":6: unknown key 'time.cfll' (did you mean 'time.cfl'?)"
+case_ wrong_type 2 ":2: key 'spacing': expected a positive number, got 'abc'"
+case_ negative_spacing 2 ":2: key 'spacing': expected a positive number, got '-0.01'"
+case_ dimension_4 2 ":1: key 'dimension': expected an integer in [2, 3], got '4'"
+case_ kernel_h_out_of_range 2 ":7: key 'kernel.h_over_dx': expected a number in [0.5, 4], got '9'"
+case_ kernel_unknown 2 ":7: key 'kernel.type': expected one of cubic, quintic, wendland_c2, wendland_c4, lucy, gaussian; got 'cubik'"
+case_ cfl_out_of_range 2 ":6: key 'time.cfl': expected a number in [0.001, 1], got '2'"
+case_ dt_max_negative 2 ":6: key 'time.dt_max': expected a number >= 0, got '-0.001'"
+case_ end_time_zero 2 ":6: key 'time.end': expected a positive number, got '0'"
+case_ domain_inverted 2 ":7: key 'domain.hi': must exceed domain.lo in every direction"
+case_ particles_outside_domain 2 ":7: key 'domain': particle 5 of body at (0.055, 0.005) lies outside the domain"
+case_ overlapping_bodies 2 ":6: body 'bodies[1]' overlaps body 'bodies[0]': its particle at (0.045, 0.035) lies within half a spacing of one of that body's particles"
+case_ empty_body 2 ":4: body 'bodies[0]': holds no particle at spacing 0.01 (too small or inverted)"
+case_ box_inverted 2 ":4: body 'bodies[0]': box: hi must exceed lo in every direction"
+case_ missing_scheme 2 ": key 'scheme.name': required key is missing"
+case_ no_bodies 2 ": key 'bodies': at least one body is required"
+case_ syntax_error 2 ":4: syntax error: mismatched flow mapping end"
+case_ duplicate_key 2 ":7: key 'spacing': duplicate key (first given on line 2)"
+case_ yaml_directive 2 ":2: YAML directives (lines starting with '%') are not supported"
+case_ alias 2 ":2: anchors and aliases are not supported"
+case_ gravity_length 2 ":7: key 'gravity': expected a sequence of 2 numbers, got 3 elements"
+case_ unknown_material 2 ":4: key 'bodies[0].material': expected one of water; got 'oil'"
+case_ materials_missing_density 2 ":3: key 'materials[0].density': required key is missing"
+case_ top_level_sequence 2 ":1: the top level must be a mapping of keys, got a sequence"
+case_ empty_case 2 ": key 'dimension': required key is missing"
+case_ stl_in_2d 2 ":4: key 'bodies[0].type': an STL body needs dimension 3"
+case_ stl_bad_fill 2 ":7: key 'bodies[0].fill': expected one of volume, surface; got 'shell'"
+case_ stl_layers_without_surface 2 ":7: key 'bodies[0].layers': layers needs fill: surface"
+case_ stl_negative_scale 2 ":7: key 'bodies[0].scale': expected a positive number, got '-1'"
+case_ stl_not_closed 2 ":7: body 'bodies[0]': $D/geometry/open.stl:2: the surface is not closed: the edge from (0, 1, 0) to (1, 0, 0) belongs to no other triangle"
+case_ stl_malformed 2 ":7: body 'bodies[0]': $D/geometry/malformed.stl:13: expected a number (vertex z), got 'x1'"
+case_ stl_truncated_binary 2 ":7: body 'bodies[0]': $D/geometry/truncated.stl: binary STL: the header (byte 80) gives 4 triangles, which need 84 + 50 x 4 = 284 bytes, but the file has 200 bytes (truncated, or not an STL file)"
+case_ stl_too_fine 2 ":7: body 'bodies[0]': $D/geometry/closed.stl: the surface's bounding box holds 1000000000000 lattice points at spacing 0.1"
+case_ stl_missing_file 3 ":7: body 'bodies[0]': cannot read '$D/geometry/no_such_file.stl': No such file or directory"
+
+# Every file of the catalogue is listed above.
+for f in "$D"/*.yaml; do
+    n=$(basename "$f" .yaml)
+    grep -q "^case_ $n " "$0" || bad "$n.yaml has no expected message in $0"
+done
+
+# Files: a missing case, a folder as the case, an output folder below a regular file (i/o: 3).
+expect_text 3 "cannot read '$T/missing.yaml': No such file or directory" "$RY" run "$T/missing.yaml"
+expect_text 3 "cannot read '$D'" "$RY" info "$D"
+: > "$T/plain_file"
+expect_text 3 "i/o error" "$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/plain_file/out" \
+    --set time.end=0.001
+# The particle limit: a clean error naming the body, exit code 2.
+expect_text 2 "dam_break_seed.yaml:17: body 'bodies[0]': more than 1000 particles (the particle limit)" \
+    env RY_MAX_PARTICLES=1000 "$RY" info "$SRC/cases/dam_break_seed.yaml"
+expect_text 2 "RY_MAX_PARTICLES: expected a positive whole number, got 'lots'" \
+    env RY_MAX_PARTICLES=lots "$RY" info "$SRC/cases/dam_break_seed.yaml"
+
+finish
