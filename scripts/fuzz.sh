@@ -1,6 +1,6 @@
 #!/bin/sh
 # Runs each libFuzzer target for SECONDS (after replaying its regression inputs), one at a time.
-# usage: fuzz.sh BUILD_DIR SECONDS [TARGET...]   (targets: case stl; default both)
+# usage: fuzz.sh BUILD_DIR SECONDS [TARGET...]   (targets: case stl checkpoint; default all)
 # The working corpus grows in BUILD_DIR/corpus/TARGET; the seeds in fuzz/corpus/TARGET (plus the
 # example cases and bad inputs) are only read. A crash, leak, sanitizer report or timeout leaves
 # its input in BUILD_DIR/artifacts/ and makes the script fail. Each run's final line:
@@ -9,7 +9,7 @@ set -u
 B=$1
 S=$2
 shift 2
-TARGETS=${*:-case stl}
+TARGETS=${*:-case stl checkpoint}
 cd "$(dirname "$0")/.."
 status=0
 for t in $TARGETS; do
@@ -19,6 +19,7 @@ for t in $TARGETS; do
     case $t in
     case) seeds="fuzz/corpus/case cases tests/bad_inputs" ;;
     stl) seeds="fuzz/corpus/stl cases/geometry tests/bad_inputs/geometry" ;;
+    checkpoint) seeds="fuzz/corpus/checkpoint" ;;
     esac
     export OMP_NUM_THREADS=1
     export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1

@@ -83,4 +83,9 @@ ry_status ry_ck_get_text(const ry_ck_reader *r, const char *name, char **text, s
                          ry_error *err);
 const char *ry_ck_type_name(ry_ck_type type);
 
+/* Replaces the state of a simulation by the checkpoint's (ry_sim_checkpoint_read without the
+ * file; sim.h). */
+struct ry_sim;
+ry_status ry_sim_checkpoint_load(struct ry_sim *sim, const ry_ck_reader *r, ry_error *err);
+
 #endif

@@ -24,13 +24,18 @@ static double var_get(const ry_state_var *v) {
     return v->f64 ? *v->f64 : v->i32 ? (double)*v->i32 : (double)*v->i64;
 }
 
-static void var_set(const ry_state_var *v, double x) {
-    if (v->f64)
+/* Sets a variable; 0 when an integer one cannot hold x. */
+static int var_set(const ry_state_var *v, double x) {
+    if (v->f64) {
         *v->f64 = x;
-    else if (v->i32)
+        return 1;
+    }
+    if (!(x == floor(x) && fabs(x) <= (v->i32 ? 2147483647.0 : 9.0e15))) return 0;
+    if (v->i32)
         *v->i32 = (int)x;
     else
         *v->i64 = (long)x;
+    return 1;
 }
 
 /* ---- writing ------------------------------------------------------------------------------ */
@@ -119,7 +124,7 @@ static ry_status text_is(const ry_ck_reader *r, const char *key, const char *wan
     return st;
 }
 
-static ry_status get_sim(ry_sim *sim, const ry_ck_reader *r, ry_error *err) {
+ry_status ry_sim_checkpoint_load(ry_sim *sim, const ry_ck_reader *r, ry_error *err) {
     ry_particles *ps = &sim->ps;
     int64_t dim, n, v;
     RY_TRY(text_is(r, "meta/scheme", sim->scheme->name, "scheme", err));
@@ -166,6 +171,8 @@ static ry_status get_sim(ry_sim *sim, const ry_ck_reader *r, ry_error *err) {
     RY_TRY(ry_ck_get_f64(r, "time/dt", &sim->dt, err));
     RY_TRY(ry_ck_get_f64(r, "time/next_output", &sim->next_output, err));
     RY_TRY(ry_ck_get_i64(r, "time/step", &v, err));
+    RY_CHECK(err, v >= 0 && isfinite(sim->t) && isfinite(sim->dt) && sim->dt >= 0, RY_ERR_INPUT,
+             "checkpoint %s: bad time, time step or step count", r->path);
     sim->step = (long)v;
     RY_TRY(ry_ck_get_i64(r, "time/finished", &v, err));
     sim->finished = v != 0;
@@ -189,13 +196,16 @@ static ry_status get_sim(ry_sim *sim, const ry_ck_reader *r, ry_error *err) {
         double x;
         snprintf(k, sizeof k, "scheme/%s", vars[i].name);
         RY_TRY(ry_ck_get_f64(r, k, &x, err));
-        var_set(&vars[i], x);
+        RY_CHECK(err, var_set(&vars[i], x), RY_ERR_INPUT,
+                 "checkpoint %s: record '%s': %g is not a valid value", r->path, k, x);
     }
     for (int k = 0; k < sim->nprofiles; ++k) {
         ry_profile *pf = &sim->profiles[k];
         char key[300];
         snprintf(key, sizeof key, "profile/%s/samples", pf->name);
         RY_TRY(ry_ck_get_i64(r, key, &v, err));
+        RY_CHECK(err, v >= 0 && v <= 2147483647, RY_ERR_INPUT,
+                 "checkpoint %s: record '%s': bad count", r->path, key);
         pf->nsamples = (int)v;
         snprintf(key, sizeof key, "profile/%s/sum", pf->name);
         RY_TRY(ry_ck_get(r, key, RY_CK_F64, (size_t)pf->npoints * (size_t)(sim->dim + 2), pf->sum,
@@ -215,7 +225,7 @@ static ry_status get_sim(ry_sim *sim, const ry_ck_reader *r, ry_error *err) {
 ry_status ry_sim_checkpoint_read(ry_sim *sim, const char *path, ry_error *err) {
     ry_ck_reader r;
     RY_TRY(ry_ck_open(&r, path, err));
-    ry_status st = get_sim(sim, &r, err);
+    ry_status st = ry_sim_checkpoint_load(sim, &r, err);
     ry_ck_close(&r);
     return st;
 }
@@ -316,7 +326,7 @@ ry_status ry_sim_restart(ry_sim *sim, const char *dir, char *used, size_t used_s
         ry_error e = {0};
         st = ry_ck_open(&r, file, &e);
         if (st == RY_OK) {
-            st = get_sim(sim, &r, &e);
+            st = ry_sim_checkpoint_load(sim, &r, &e);
             ry_ck_close(&r);
             if (st != RY_OK) { /* the file was sound: the case does not fit it */
                 *err = e;
@@ -436,7 +446,7 @@ ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_er
     ry_nlist_free(&sim->nl);
     ry_state_var vars[MAX_VARS];
     int nv = scheme_vars(sim, vars);
-    for (int i = 0; i < nv && i < s->nv; ++i) var_set(&vars[i], s->vars[i]);
+    for (int i = 0; i < nv && i < s->nv; ++i) (void)var_set(&vars[i], s->vars[i]);
     if (sim->scheme->restored) sim->scheme->restored(sim, sim->scheme_state);
     char vtp[4200];
     snprintf(vtp, sizeof vtp, "%s/%s_last_good.vtp", sim->out_dir, sim->case_name);
