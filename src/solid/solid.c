@@ -250,8 +250,7 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     char where[256];
     RY_TRY(ry_case_choice(c, "scheme.formulation", "total_lagrangian", formulation_names, &s->ul,
                           err));
-    RY_TRY(ry_case_choice(c, "scheme.correction", "quadratic", corr_names,
-                          &s->correction, err));
+    RY_TRY(ry_case_choice(c, "scheme.correction", "quadratic", corr_names, &s->correction, err));
     RY_TRY(
         ry_case_choice(c, "scheme.clamp", s->ul ? "block" : "face", clamp_names, &s->clamp, err));
     if (s->ul) {
