@@ -2,18 +2,19 @@
  * Monaghan & Swift 2001; docs/solid.md).
  *
  * Every quantity refers to the current configuration; the neighbour list follows the particles
- * (ry_sim_neighbors). With V_j = m_j / rho_j, grad W_ij the kernel gradient at x_i and L_i the
- * kernel-gradient correction (identity with correction none, else
- * L_i = (sum_j V_j grad W_ij (x) (x_j - x_i))^-1, seed eq. 10-12):
+ * (ry_sim_neighbors). With V_j = m_j / rho_j and gradient weights G_ij built from the current
+ * positions at every step (scheme.correction: none, V_j grad W_ij; linear, V_j L_i grad W_ij with
+ * L_i = (sum_j V_j grad W_ij (x) (x_j - x_i))^-1, seed eq. 10-12; quadratic, the weights of the
+ * quadratic least-squares fit of include/ryushi/corrected.h):
  *
- *   velocity gradient  (grad v)_i = sum_j V_j (v_j - v_i) (x) L_i grad W_ij
+ *   velocity gradient  (grad v)_i = sum_j (v_j - v_i) (x) G_ij
  *   continuity         d rho_i / dt = -rho_i tr (grad v)_i                               (eq. 17)
  *   deviatoric stress  dS/dt = 2 G (eps_dot - tr(eps_dot)/d I) + S Omega^T + Omega S    (eq. 16)
  *                      (Jaumann rate; eps_dot, Omega the symmetric and antisymmetric parts)
  *   pressure           P = c0^2 (rho - rho0), c0^2 = K / rho0                           (eq. 18)
  *   stress             sigma = -P I + S
- *   momentum           m_i dv_i/dt = sum_j [V_i V_j (sigma_i L_i + sigma_j L_j)
- *                                   + m_i m_j (f_ij^n (R_i + R_j) - Pi_ij I)] grad W_ij
+ *   momentum           m_i dv_i/dt = sum_j [V_i sigma_i G_ij - V_j sigma_j G_ji]
+ *                                   + sum_j m_i m_j (f_ij^n (R_i + R_j) - Pi_ij I) grad W_ij
  *                                   + f_ext,i + m_i g
  *
  * The stress term is the one whose power is exactly -sum_i V_i sigma_i : (grad v)_i, so the
@@ -30,8 +31,10 @@
  * 2001): in the principal axes of sigma_i, R_i = -epsilon sigma_i^aa / rho_i^2 for each tensile
  * principal stress (0 for a compressive one), rotated back; f_ij = W(r_ij) / W(dx).
  *
- * Clamped particles (kind wall) are a block of the material held fixed: their density and
- * stress evolve with the velocity gradient that the moving neighbours give them. */
+ * Clamped particles (kind wall): with scheme.clamp: block (the default here) a block of the
+ * material held fixed, whose density and stress evolve with the velocity gradient that the
+ * moving neighbours give them; with clamp: face they hold no stress and only supply v = 0 to
+ * the gradients of their neighbours. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
