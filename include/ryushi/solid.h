@@ -15,7 +15,7 @@ extern const ry_scheme_type ry_scheme_solid;
 
 /* Probes of series.csv for solids (listed by `ryushi probes`). */
 extern const ry_probe ry_probe_tip_deflection, ry_probe_tip_axial, ry_probe_residual,
-    ry_probe_solid_kinetic_energy, ry_probe_strain_energy;
+    ry_probe_solid_kinetic_energy, ry_probe_strain_energy, ry_probe_min_spacing;
 
 /* Beam geometry of the solid particles: root x, length L, cross-section A, spacing of the
  * particle columns. RY_ERR_INPUT when there is no solid particle. */
@@ -50,6 +50,26 @@ double ry_beam_deflection_shear(ry_beam_load load, double L, double kappa_GA, do
 /* Elastica of a cantilever under a dead end load P normal to it, alpha2 = P L^2 / EI: the tip
  * position (x along the undeformed beam, y along the load) in units of L, and the tip angle. */
 void ry_elastica_end_load(double alpha2, double *x_tip, double *y_tip, double *theta_tip);
+
+/* k1 L = 1.8751040687: the first root of cos(kL) cosh(kL) = -1, the first bending mode of a
+ * clamped-free beam. */
+#define RY_CANTILEVER_KL1 1.8751040687119611
+
+/* Angular frequency of the first bending mode of a clamped-free plate of length L and
+ * thickness H in cylindrical bending (thin-plate theory, plane strain):
+ * omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)), k = RY_CANTILEVER_KL1 / L. */
+double ry_plate_omega(double E, double nu, double rho, double H, double L);
+
+/* Complete elliptic integrals of the first and second kind, K(p) and E(p), modulus p < 1
+ * (arithmetic-geometric mean). */
+void ry_elliptic_ke(double p, double *K, double *E);
+
+/* Euler's elastica of a clamped-free column under a dead axial end load P above the critical
+ * load P_cr = pi^2 EI / (4 L^2), load_ratio = P / P_cr >= 1 (Timoshenko & Gere 1961, sec. 2.7):
+ * kL = sqrt(P / EI) L = K(p), p = sin(theta_tip / 2); tip position in units of L along the
+ * undeformed axis from the root, 2 E(p) / K(p) - 1, and across it, 2 p / K(p). At or below the
+ * critical load the column stays straight: (1, 0, 0). */
+void ry_elastica_column(double load_ratio, double *x_tip, double *y_tip, double *theta_tip);
 
 /* Relative residual of the last force evaluation of the scheme `solid`:
  * |f_internal + f_external| / |f_external| over the free solid particles (the absolute net force

@@ -32,6 +32,21 @@ double ry_mass_drift(const ry_table *series);
 /* Largest value of a column (e.g. outside, in_wall); 0 when absent. */
 double ry_column_max(const ry_table *series, const char *name);
 
+/* Smallest value of a column (rows holding NAN skipped); NAN when absent. */
+double ry_column_min(const ry_table *series, const char *name);
+
+/* An oscillation in series.csv: the period from the zero crossings of a column (mean spacing of
+ * the first and last crossing, linear interpolation between rows; the first row is skipped),
+ * and the total energy solid_kinetic_energy + strain_energy at the start and its means over the
+ * first and the last period (NAN without these columns). period is NAN with fewer than two
+ * crossings. */
+typedef struct ry_oscillation {
+    double period;
+    int crossings;
+    double energy0, energy_first, energy_last;
+} ry_oscillation;
+ry_oscillation ry_series_oscillation(const ry_table *series, const char *name);
+
 /* Cavity centrelines against Ghia et al.: the case's profiles `u_vertical_centreline` (u along
  * x = L/2, bottom to top) and `v_horizontal_centreline` (v along y = L/2, left to right), time
  * averaged when they have average_from, interpolated at the reference's y/L and x/L, for a

@@ -7,5 +7,8 @@ int ry_cli_plot(int argc, char **argv);
 int ry_cli_validate(int argc, char **argv);
 /* The cantilever validation (validate_solid.c); adds its failed checks to *failures. */
 int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int *failures);
+/* The oscillating plate and the filament buckling (validate_solid.c). */
+int ry_cli_validate_plate(const char *root, const char *out, int quick, int *failures);
+int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *failures);
 
 #endif

@@ -169,6 +169,7 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &ry_probe_residual,
                                              &ry_probe_solid_kinetic_energy,
                                              &ry_probe_strain_energy,
+                                             &ry_probe_min_spacing,
                                              NULL};
 
 const ry_probe *const *ry_probes(void) {

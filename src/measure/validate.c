@@ -104,6 +104,58 @@ double ry_column_max(const ry_table *series, const char *name) {
     return m;
 }
 
+double ry_column_min(const ry_table *series, const char *name) {
+    int c = ry_table_col(series, name);
+    double m = INFINITY;
+    if (c < 0) return NAN;
+    for (size_t r = 0; r < series->nrows; ++r) {
+        const double v = ry_table_at(series, r, c);
+        if (v == v) m = fmin(m, v);
+    }
+    return m;
+}
+
+ry_oscillation ry_series_oscillation(const ry_table *series, const char *name) {
+    ry_oscillation o = {NAN, 0, NAN, NAN, NAN};
+    const int ct = ry_table_col(series, "t"), cy = ry_table_col(series, name);
+    const int ck = ry_table_col(series, "solid_kinetic_energy");
+    const int cs = ry_table_col(series, "strain_energy");
+    if (ct < 0 || cy < 0) return o;
+    double first = NAN, last = NAN;
+    for (size_t r = 1; r < series->nrows; ++r) {
+        const double y0 = ry_table_at(series, r - 1, cy), y1 = ry_table_at(series, r, cy);
+        if (!((y0 < 0 && y1 >= 0) || (y0 >= 0 && y1 < 0)) || r == 1) continue;
+        const double t0 = ry_table_at(series, r - 1, ct), t1 = ry_table_at(series, r, ct);
+        const double tz = t0 + (t1 - t0) * y0 / (y0 - y1);
+        if (o.crossings == 0) first = tz;
+        last = tz;
+        o.crossings++;
+    }
+    if (o.crossings >= 2) o.period = 2 * (last - first) / (o.crossings - 1);
+    if (ck >= 0 && cs >= 0 && series->nrows > 0 && o.period > 0) {
+        /* means over the first and the last period */
+        const size_t n = series->nrows;
+        const double t_end = ry_table_at(series, n - 1, ct);
+        double s0 = 0, s1 = 0, n0 = 0, n1 = 0;
+        o.energy0 = ry_table_at(series, 0, ck) + ry_table_at(series, 0, cs);
+        for (size_t r = 0; r < n; ++r) {
+            const double t = ry_table_at(series, r, ct);
+            const double e = ry_table_at(series, r, ck) + ry_table_at(series, r, cs);
+            if (t <= o.period) {
+                s0 += e;
+                n0 += 1;
+            }
+            if (t >= t_end - o.period) {
+                s1 += e;
+                n1 += 1;
+            }
+        }
+        o.energy_first = s0 / n0;
+        o.energy_last = s1 / n1;
+    }
+    return o;
+}
+
 /* One centreline against a reference: the profile's mean, interpolated linearly at the
  * reference's coordinates (coordinate `axis` of the points, in units of L); writes the CSV and
  * returns the RMS of (value/U - reference). */

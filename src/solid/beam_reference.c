@@ -1,4 +1,5 @@
-/* Reference solutions for cantilevers: Euler-Bernoulli and Timoshenko deflections, elastica. */
+/* Reference solutions for cantilevers: Euler-Bernoulli and Timoshenko deflections, elastica,
+ * the vibrating plate and the buckled column. */
 #include <math.h>
 
 #include "ryushi/solid.h"
@@ -99,4 +100,44 @@ void ry_elastica_end_load(double alpha2, double *x_tip, double *y_tip, double *t
     *x_tip = sqrt(2 * sin(th0) / alpha2);
     *y_tip = y;
     *theta_tip = th0;
+}
+
+double ry_plate_omega(double E, double nu, double rho, double H, double L) {
+    const double k = RY_CANTILEVER_KL1 / L;
+    return sqrt(E * H * H * k * k * k * k / (12 * rho * (1 - nu * nu)));
+}
+
+void ry_elliptic_ke(double p, double *K, double *E) {
+    double a = 1, b = sqrt(1 - p * p), c = p, sum = 0.5 * p * p, pow2 = 0.5;
+    for (int it = 0; it < 60 && fabs(c) > 1e-17; ++it) {
+        const double an = 0.5 * (a + b);
+        c = 0.5 * (a - b);
+        b = sqrt(a * b);
+        a = an;
+        pow2 *= 2;
+        sum += pow2 * c * c;
+    }
+    *K = PI / (2 * a);
+    *E = *K * (1 - sum);
+}
+
+void ry_elastica_column(double load_ratio, double *x_tip, double *y_tip, double *theta_tip) {
+    *x_tip = 1;
+    *y_tip = *theta_tip = 0;
+    if (!(load_ratio > 1)) return;
+    const double kL = 0.5 * PI * sqrt(load_ratio);
+    double lo = 0, hi = 1 - 1e-15, K = 0, E = 0;
+    for (int it = 0; it < 200; ++it) { /* K(p) grows with p */
+        const double mid = 0.5 * (lo + hi);
+        ry_elliptic_ke(mid, &K, &E);
+        if (K < kL)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    const double p = 0.5 * (lo + hi);
+    ry_elliptic_ke(p, &K, &E);
+    *x_tip = 2 * E / K - 1;
+    *y_tip = 2 * p / K;
+    *theta_tip = 2 * asin(p);
 }

@@ -1,5 +1,6 @@
 /* SPH for elastic solids, total-Lagrangian form with corrected kernel gradients (seed 000,
- * SPEC section 2; docs/solid.md).
+ * SPEC section 2; docs/solid.md). The scheme's set-up, loads, initial velocity, time stepping
+ * and probes serve the updated-Lagrangian form (updated.c, scheme.formulation) as well.
  *
  * Every quantity refers to the reference (initial) configuration X, in which the neighbour list,
  * the kernel gradients grad W_ij = grad_X W(|X_i - X_j|) and the volumes V_j = m_j / rho0_j are
@@ -30,53 +31,17 @@
 #include <string.h>
 
 #include "ryushi/corrected.h"
-#include "ryushi/solid.h"
+#include "solid/solid_internal.h"
 
-enum { LOAD_NONE, LOAD_END, LOAD_UNIFORM, LOAD_LINEAR, LOAD_COSINE };
-enum { RELAX_NONE, RELAX_KINETIC, RELAX_VISCOUS };
-enum { PLANE_STRESS, PLANE_STRAIN };
-enum { CORR_NONE, CORR_LINEAR, CORR_QUADRATIC };
-enum { CLAMP_FACE, CLAMP_BLOCK };
-enum { INTEGRATION_NODAL, INTEGRATION_GRADIENT };
-
-/* Loops over fewer particles run on one thread: a step of a small beam takes microseconds, less
- * than a thread barrier on a busy machine. (Every particle sums only into itself, so the
- * results do not depend on this.) */
-enum { RY_SOLID_PARALLEL_MIN = 8192 };
-#define RY_SOLID_INLINE static inline __attribute__((always_inline))
-
+static const double RY_SOLID_TL_DYNAMIC_DT = 0.25;
 static const char *const load_names[] = {"none", "end", "uniform", "linear", "cosine", NULL};
 static const char *const relax_names[] = {"none", "kinetic", "viscous", NULL};
 static const char *const plane_names[] = {"stress", "strain", NULL};
 static const char *const corr_names[] = {"none", "linear", "quadratic", NULL};
 static const char *const clamp_names[] = {"face", "block", NULL};
 static const char *const integration_names[] = {"nodal", "gradient", NULL};
-
-typedef struct solid {
-    int correction, plane, load, relax, clamp, integration;
-    double load_q, load_dir[3], damping, residual_tol;
-    double *lam, *mu, *E; /* per material (lambda* in plane stress), Young's modulus */
-    double hourglass;     /* hourglass-control coefficient alpha */
-    double c_max;    /* fastest wave speed (of the free particles' materials with relaxation) */
-    double *modulus; /* per material: P-wave modulus lambda + 2 mu */
-    double *mscale;  /* per particle: fictitious-mass factor of dynamic relaxation */
-    double *hgc;     /* per pair: hourglass stiffness (E_i + E_j)/2 V_j W_ij / |X_ij|^2 */
-    int f_X[3], f_fext[3], f_u[3], f_psi;
-    /* reference neighbour list and per-pair kernel gradients */
-    ry_cell_list cells;
-    ry_nlist nl;
-    double *G;   /* dim per pair: gradient weights, grad f_i = sum_j G_ij (f_j - f_i) */
-    double *H;   /* dim^2 per pair: second-derivative weights (integration: gradient) */
-    double *Q;   /* 27 per particle: Q_k = (cell^2/12) F T_k, the strain-gradient stresses */
-    size_t *rev; /* per pair ij: the index of the pair ji */
-    double *vol; /* reference volume per particle */
-    double *A;   /* 9 per particle: first Piola-Kirchhoff stress P_i */
-    double *F;   /* 9 per particle: deformation gradient */
-    double *r2;  /* squared net force per particle */
-    int built, have_forces;
-    double residual, ke_prev;
-    long peaks; /* kinetic-damping resets */
-} solid;
+static const char *const formulation_names[] = {"total_lagrangian", "updated_lagrangian", NULL};
+static const char *const initial_names[] = {"none", "cantilever_mode", NULL};
 
 static const solid *solid_state(const ry_sim *sim) {
     return sim->scheme == &ry_scheme_solid ? sim->scheme_state : NULL;
@@ -236,6 +201,46 @@ static ry_status load_forces(ry_sim *sim, solid *s, ry_error *err) {
     return RY_OK;
 }
 
+/* Initial velocity (scheme.initial_velocity) and the direction the probe tip_deflection
+ * measures along: the load's, else the initial velocity's, else -y (2D) or -z (3D).
+ *   cantilever_mode  the first bending mode of a clamped-free beam (Gray, Monaghan & Swift
+ *                    2001): v(s) = V f(s) / f(L) along the direction, s the distance from the
+ *                    root, f(s) = (sin kL + sinh kL)(cos ks - cosh ks)
+ *                             - (cos kL + cosh kL)(sin ks - sinh ks), kL = 1.875104. */
+static ry_status initial_velocity(ry_sim *sim, ry_case *c, solid *s, ry_error *err) {
+    const int dim = sim->dim;
+    int mode;
+    memset(s->probe_dir, 0, sizeof s->probe_dir);
+    s->probe_dir[dim - 1] = -1;
+    if (s->load != LOAD_NONE) memcpy(s->probe_dir, s->load_dir, sizeof s->probe_dir);
+    RY_TRY(ry_case_choice(c, "scheme.initial_velocity.type", "none", initial_names, &mode, err));
+    if (mode == 0) return RY_OK;
+    double V, dir[3] = {0, 0, 0}, def[3] = {0, 0, 0}, n2 = 0;
+    char where[256];
+    def[dim - 1] = 1;
+    RY_TRY(
+        ry_case_double(c, "scheme.initial_velocity.tip_speed", NULL, -INFINITY, INFINITY, &V, err));
+    RY_TRY(ry_case_vector(c, "scheme.initial_velocity.direction", def, dim, dir, err));
+    for (int d = 0; d < dim; ++d) n2 += dir[d] * dir[d];
+    RY_CHECK(err, n2 > 0, RY_ERR_INPUT, "%s: key 'scheme.initial_velocity.direction': zero vector",
+             ry_case_where(c, "scheme.initial_velocity.direction", where, sizeof where));
+    for (int d = 0; d < dim; ++d) dir[d] /= sqrt(n2);
+    if (s->load == LOAD_NONE) memcpy(s->probe_dir, dir, sizeof dir);
+    ry_beam b;
+    RY_TRY(ry_beam_geometry(sim, &b, err));
+    const double k = RY_CANTILEVER_KL1 / b.length, kL = RY_CANTILEVER_KL1;
+    const double A = sin(kL) + sinh(kL), B = cos(kL) + cosh(kL);
+    const double fL = A * (cos(kL) - cosh(kL)) - B * (sin(kL) - sinh(kL));
+    ry_particles *ps = &sim->ps;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        const double ks = k * (ps->f[s->f_X[0]][i] - b.x_root);
+        const double f = A * (cos(ks) - cosh(ks)) - B * (sin(ks) - sinh(ks));
+        for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][i] = V * f / fL * dir[d];
+    }
+    return RY_OK;
+}
+
 /* ---- set-up ------------------------------------------------------------------------------- */
 
 static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
@@ -244,22 +249,23 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     *state = s;
     double zero = 0.0;
     char where[256];
-    const char *form;
-    RY_TRY(ry_case_string(c, "scheme.formulation", "total_lagrangian", &form, err));
-    RY_CHECK(err, strcmp(form, "total_lagrangian") == 0, RY_ERR_INPUT,
-             "%s: key 'scheme.formulation': expected total_lagrangian, got '%s'",
-             ry_case_where(c, "scheme.formulation", where, sizeof where), form);
+    RY_TRY(ry_case_choice(c, "scheme.formulation", "total_lagrangian", formulation_names, &s->ul,
+                          err));
     RY_TRY(ry_case_choice(c, "scheme.correction", "quadratic", corr_names, &s->correction, err));
-    RY_TRY(ry_case_choice(c, "scheme.clamp", "face", clamp_names, &s->clamp, err));
-    RY_TRY(ry_case_choice(c, "scheme.integration",
-                          s->correction == CORR_QUADRATIC ? "gradient" : "nodal", integration_names,
-                          &s->integration, err));
-    RY_CHECK(err, s->integration == INTEGRATION_NODAL || s->correction == CORR_QUADRATIC,
-             RY_ERR_INPUT,
-             "%s: key 'scheme.integration': gradient needs scheme.correction: quadratic",
-             ry_case_where(c, "scheme.integration", where, sizeof where));
-    double hg = 0.1;
-    RY_TRY(ry_case_double(c, "scheme.hourglass", &hg, 0.0, 100.0, &s->hourglass, err));
+    RY_TRY(
+        ry_case_choice(c, "scheme.clamp", s->ul ? "block" : "face", clamp_names, &s->clamp, err));
+    if (s->ul) {
+    } else {
+        RY_TRY(ry_case_choice(c, "scheme.integration",
+                              s->correction == CORR_QUADRATIC ? "gradient" : "nodal",
+                              integration_names, &s->integration, err));
+        RY_CHECK(err, s->integration == INTEGRATION_NODAL || s->correction == CORR_QUADRATIC,
+                 RY_ERR_INPUT,
+                 "%s: key 'scheme.integration': gradient needs scheme.correction: quadratic",
+                 ry_case_where(c, "scheme.integration", where, sizeof where));
+        double hg = 0.1;
+        RY_TRY(ry_case_double(c, "scheme.hourglass", &hg, 0.0, 100.0, &s->hourglass, err));
+    }
     if (sim->dim == 2)
         RY_TRY(ry_case_choice(c, "scheme.plane", "stress", plane_names, &s->plane, err));
     RY_TRY(ry_case_choice(c, "scheme.load.type", "none", load_names, &s->load, err));
@@ -326,6 +332,8 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         if (ps->kind[i] == RY_KIND_WALL)
             for (int d = 0; d < sim->dim; ++d) ps->f[RY_F_VX + d][i] = 0;
     RY_TRY(load_forces(sim, s, err));
+    RY_TRY(initial_velocity(sim, c, s, err));
+    if (s->ul) RY_TRY(ry_solid_ul_init(sim, c, s, err));
     return RY_OK;
 }
 
@@ -348,7 +356,20 @@ static void solid_free(void *state) {
     free(s->modulus);
     free(s->mscale);
     free(s->hgc);
+    ry_solid_ul_free(s);
     free(s);
+}
+
+size_t ry_solid_reverse_pair(const ry_nlist *nl, size_t i, size_t j) {
+    size_t lo = nl->offset[j], hi = nl->offset[j + 1];
+    while (lo < hi) { /* i in the sorted row of j */
+        const size_t mid = lo + (hi - lo) / 2;
+        if (nl->j[mid] < i)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
 }
 
 /* Neighbour list, kernel gradients and corrections in the reference configuration. */
@@ -398,18 +419,8 @@ static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
             if (s->relax != RELAX_NONE) ms = fmax(ms, s->modulus[mj] / s->modulus[mi]);
         }
         s->mscale[i] = ms;
-        for (size_t q = o; q < o + nn; ++q) { /* reverse pair: i in the sorted list of j */
-            const uint32_t j = s->nl.j[q];
-            size_t lo = s->nl.offset[j], hi = s->nl.offset[j + 1];
-            while (lo < hi) {
-                size_t mid = lo + (hi - lo) / 2;
-                if (s->nl.j[mid] < i)
-                    lo = mid + 1;
-                else
-                    hi = mid;
-            }
-            s->rev[q] = lo;
-        }
+        for (size_t q = o; q < o + nn; ++q)
+            s->rev[q] = ry_solid_reverse_pair(&s->nl, i, s->nl.j[q]);
         ry_error e1;
         ry_status si = RY_OK;
         if (s->correction == CORR_QUADRATIC) {
@@ -560,15 +571,13 @@ RY_SOLID_INLINE void stresses_dim(ry_sim *sim, solid *s, const int dim) {
 RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, const int dim) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    double *acc[3] = {ps->f[RY_F_AX], ps->f[RY_F_AY], dim > 2 ? ps->f[RY_F_AZ] : NULL};
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
     const double *X[3] = {ps->f[s->f_X[0]], ps->f[s->f_X[1]], dim > 2 ? ps->f[s->f_X[2]] : NULL};
     const double hg = s->hourglass;
 #pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_SOLID) {
-            for (int d = 0; d < dim; ++d) acc[d][i] = 0;
-            s->r2[i] = 0;
+            ry_solid_accelerate(sim, s, i, NULL, dim);
             continue;
         }
         double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
@@ -611,16 +620,34 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, const int dim) {
                 }
             }
         }
-        const double m = ps->f[RY_F_MASS][i];
-        double r2 = 0;
-        for (int a = 0; a < dim; ++a) {
-            double ft = f[a] + vi * hg * fh[a] + ps->f[s->f_fext[a]][i] + m * sim->gravity[a];
-            acc[a][i] = ft / (m * s->mscale[i]);
-            r2 += ft * ft;
-        }
-        s->r2[i] = r2;
+        for (int a = 0; a < dim; ++a) f[a] += vi * hg * fh[a];
+        ry_solid_accelerate(sim, s, i, f, dim);
     }
-    /* residual, summed in particle order (the same for any thread count) */
+    ry_solid_residual_update(sim, s);
+}
+
+void ry_solid_accelerate(ry_sim *sim, solid *s, size_t i, const double *f, int dim) {
+    ry_particles *ps = &sim->ps;
+    if (!f) {
+        for (int a = 0; a < dim; ++a) ps->f[RY_F_AX + a][i] = 0;
+        s->r2[i] = 0;
+        return;
+    }
+    const double m = ps->f[RY_F_MASS][i];
+    double r2 = 0;
+    for (int a = 0; a < dim; ++a) {
+        double ft = f[a] + ps->f[s->f_fext[a]][i] + m * sim->gravity[a];
+        ps->f[RY_F_AX + a][i] = ft / (m * s->mscale[i]);
+        r2 += ft * ft;
+    }
+    s->r2[i] = r2;
+}
+
+void ry_solid_residual_update(ry_sim *sim, solid *s) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    /* summed in particle order (the same for any thread count) */
     double net = 0, ext = 0;
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_SOLID) continue;
@@ -647,10 +674,16 @@ static void forces(ry_sim *sim, solid *s) {
         forces_dim(sim, s, 3);
 }
 
-static ry_status evaluate(ry_sim *sim, solid *s, ry_error *err) {
-    if (!s->built) RY_TRY(build_reference(sim, s, err));
-    stresses(sim, s);
-    forces(sim, s);
+/* Forces for the current positions and velocities; the updated-Lagrangian form also advances
+ * its density and stress by dt (0 before the first step). */
+static ry_status evaluate(ry_sim *sim, solid *s, double dt, ry_error *err) {
+    if (s->ul) {
+        RY_TRY(ry_solid_ul_evaluate(sim, s, dt, err));
+    } else {
+        if (!s->built) RY_TRY(build_reference(sim, s, err));
+        stresses(sim, s);
+        forces(sim, s);
+    }
     s->have_forces = 1;
     return RY_OK;
 }
@@ -659,6 +692,14 @@ static ry_status solid_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     solid *s = state;
     (void)err;
     *dt = sim->cfl * sim->kernel.h / s->c_max;
+    /* Total-Lagrangian dynamics (no relaxation): the corrected gradient weights of the particles
+     * on free surfaces and next to the clamp reach higher frequencies than the P wave between
+     * interior particles. Measured on the oscillating plate (H/dx = 4, nu = 0.3975, plane strain,
+     * face clamp): the energy runs away within one period at CFL 0.25 and 0.2, after 0.65 s
+     * (2.5 periods) at 0.125, and is conserved to 1e-4 over 10 periods at 0.0625; the limit is
+     * therefore a quarter of the CFL step. Dynamic relaxation keeps the full step (kinetic
+     * damping removes the energy). */
+    if (!s->ul && s->relax == RELAX_NONE) *dt *= RY_SOLID_TL_DYNAMIC_DT;
     return RY_OK;
 }
 
@@ -667,8 +708,8 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    if (!s->built) RY_TRY(build_reference(sim, s, err)); /* e.g. after a restart */
-    if (!s->have_forces) RY_TRY(evaluate(sim, s, err));
+    if (!s->ul && !s->built) RY_TRY(build_reference(sim, s, err)); /* e.g. after a restart */
+    if (!s->have_forces) RY_TRY(evaluate(sim, s, 0.0, err));
     const double keep = s->relax == RELAX_VISCOUS ? (1 - 0.5 * s->damping * dt) : 1.0;
     const double gain = s->relax == RELAX_VISCOUS ? 1.0 / (1 + 0.5 * s->damping * dt) : 1.0;
 #pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
@@ -697,7 +738,7 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
             ps->f[s->f_u[d]][i] = ps->f[RY_F_X + d][i] - ps->f[s->f_X[d]][i];
         }
     }
-    RY_TRY(evaluate(sim, s, err));
+    RY_TRY(evaluate(sim, s, dt, err));
     if (s->relax != RELAX_NONE && s->residual_tol > 0 && s->residual < s->residual_tol)
         sim->finished = 1;
     return RY_OK;
@@ -716,10 +757,15 @@ static int solid_vars(void *state, ry_state_var *v, int max) {
 }
 
 const ry_scheme_type ry_scheme_solid = {
-    "solid",    "elastic solid, total-Lagrangian SPH with corrected kernel gradients (seed 000)",
-    solid_init, solid_dt,
-    solid_step, solid_free,
-    solid_vars, NULL};
+    "solid",
+    "elastic solid: total-Lagrangian SPH with corrected kernel gradients, or updated-Lagrangian "
+    "with Jaumann-rate stress and artificial stress (seed 000)",
+    solid_init,
+    solid_dt,
+    solid_step,
+    solid_free,
+    solid_vars,
+    NULL};
 
 /* ---- probes ------------------------------------------------------------------------------- */
 
@@ -734,11 +780,7 @@ static ry_status probe_tip(const ry_sim *sim, double *v, int axial, ry_error *er
     if (axial) {
         *v = u[0];
     } else {
-        double dir[3] = {0, 0, 0};
-        if (s->load != LOAD_NONE)
-            memcpy(dir, s->load_dir, sizeof dir);
-        else
-            dir[sim->dim - 1] = -1;
+        const double *dir = s->probe_dir;
         *v = u[0] * dir[0] + u[1] * dir[1] + u[2] * dir[2];
     }
     return RY_OK;
@@ -785,3 +827,32 @@ const ry_probe ry_probe_solid_kinetic_energy = {
 const ry_probe ry_probe_strain_energy = {
     "strain_energy", "elastic energy stored in the solid and clamped particles [J]",
     probe_strain_energy};
+
+/* Smallest distance between neighbouring particles of the solid (clamp included), in initial
+ * spacings: pairs of the current neighbour list (updated-Lagrangian) or of the reference one
+ * (total-Lagrangian). Tensile clumping shows as pairs drawing much closer than a spacing. */
+static ry_status probe_min_spacing(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    const solid *s = solid_state(sim);
+    *v = NAN;
+    if (!s) return RY_OK;
+    const ry_nlist *nl = s->ul ? &sim->nl : &s->nl;
+    const ry_particles *ps = &sim->ps;
+    if (!nl->offset || nl->n != ps->n) return RY_OK;
+    double m2 = INFINITY;
+    for (size_t i = 0; i < ps->n; ++i)
+        for (size_t q = nl->offset[i]; q < nl->offset[i + 1]; ++q) {
+            const size_t j = nl->j[q];
+            double r2 = 0;
+            for (int d = 0; d < sim->dim; ++d) {
+                const double dd = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+                r2 += dd * dd;
+            }
+            m2 = fmin(m2, r2);
+        }
+    *v = sqrt(m2) / sim->dx;
+    return RY_OK;
+}
+const ry_probe ry_probe_min_spacing = {
+    "min_spacing", "solid: smallest distance between neighbouring particles, in initial spacings",
+    probe_min_spacing};

@@ -134,7 +134,18 @@ run beamp "$BEAM" $BEAMSET --set time.max_steps=150
 "$RY" run "$BEAM" $BEAMSET --restart "$T/beamp" > "$T/beamp2.log" 2>&1 || bad "solid restart failed: $(cat "$T/beamp2.log")"
 same "$T/beam" "$T/beamp" "cantilever restarted at step 150"
 
-# 8. A checkpoint does not fit another case.
+# 8. Updated-Lagrangian solid (Jaumann-rate stress as particle fields): the oscillating plate.
+PLATE="$SRC/cases/oscillating_plate.yaml"
+PSET="--set time.end=0.02 --set time.output_interval=0.005 --set output.vtk=true"
+# shellcheck disable=SC2086
+run plate "$PLATE" $PSET
+# shellcheck disable=SC2086
+run platep "$PLATE" $PSET --set time.max_steps=77
+# shellcheck disable=SC2086
+"$RY" run "$PLATE" $PSET --restart "$T/platep" > "$T/platep2.log" 2>&1 || bad "plate restart failed: $(cat "$T/platep2.log")"
+same "$T/plate" "$T/platep" "updated-Lagrangian plate restarted at step 77"
+
+# 9. A checkpoint does not fit another case.
 out=$("$RY" run "$BEAM" --restart "$T/part" -o "$T/wrong" 2>&1)
 [ $? -eq 2 ] && printf '%s' "$out" | grep -q "written for scheme 'wcsph', the case has 'solid'" &&
     ok || bad "checkpoint of another case accepted: $out"

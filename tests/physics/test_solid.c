@@ -15,21 +15,16 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "ryushi/solid.h"
-#include "ryushi/validate.h"
-
-static char root[2048], tmpdir[256];
+#include "solid_test.h"
 
 static const double t_beam = 0.05, E_beam = 96000.0, nu_beam = 0.3;
 
 /* Runs cases/cantilever.yaml with overrides (plus the clamp column on the root face for the
  * spacing) and keeps the final state. */
 static void run_beam(int n_thick, int nset, const char *const *sets, const char *sub, ry_sim *sim) {
-    char cp[4096], od[512], sp[64], lo[96], hi[96];
+    char sp[64], lo[96], hi[96];
     const char *all[16];
     const double dx = t_beam / n_thick;
-    snprintf(cp, sizeof cp, "%s/cases/cantilever.yaml", root);
-    snprintf(od, sizeof od, "%s/%s", tmpdir, sub);
     snprintf(sp, sizeof sp, "spacing=%.17g", dx);
     snprintf(lo, sizeof lo, "bodies[1].lo=[%.17g, %.17g]", -0.5 * dx, -0.5 * t_beam);
     snprintf(hi, sizeof hi, "bodies[1].hi=[%.17g, %.17g]", 0.5 * dx, 0.5 * t_beam);
@@ -38,11 +33,7 @@ static void run_beam(int n_thick, int nset, const char *const *sets, const char 
     all[2] = hi;
     all[3] = "output.vtk=false";
     for (int i = 0; i < nset; ++i) all[4 + i] = sets[i];
-    ry_run_stats stats;
-    ry_error err = {0};
-    ry_status st = ry_run_case_file(cp, 4 + nset, all, od, sim, &stats, &err);
-    if (st != RY_OK) fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(st, RY_OK);
+    run_solid_case("cantilever.yaml", 4 + nset, all, sub, sim, NULL);
 }
 
 static double deflection(const ry_sim *sim, double x, double q) {
@@ -172,21 +163,6 @@ static void test_case_errors(void **state) {
     const char *bad3[] = {"scheme.load.type=twist"};
     assert_int_equal(ry_run_case_file(cp, 1, bad3, tmpdir, &sim, &stats, &err), RY_ERR_INPUT);
     assert_non_null(strstr(err.msg, "scheme.load.type"));
-}
-
-static int setup(void **state) {
-    (void)state;
-    const char *r = getenv("RY_SOURCE_DIR");
-    snprintf(root, sizeof root, "%s", r && *r ? r : RY_SOURCE_DIR);
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/ryushi_test_solid_XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state) {
-    (void)state;
-    char cmd[400];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
 }
 
 int main(void) {
