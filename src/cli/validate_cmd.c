@@ -382,7 +382,9 @@ static int validate_channel(vctx *v) {
     }
     ry_plot_series(p, 0, "Poiseuille", NP, uu, yy, ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE),
                    &err);
-    ry_plot_series(p, 1, "U H t", 2, tt, vv, ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    ry_plot_style dashed = ry_plot_style_line();
+    dashed.dash = RY_PLOT_DASH_DASHED;
+    ry_plot_series(p, 1, "U H t", 2, tt, vv, dashed, &err);
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_SE, &err);
     ry_plot_legend(p, 1, RY_PLOT_LEGEND_NW, &err);
     char png[4096];
