@@ -28,7 +28,11 @@ static ry_status fill_inlet(ry_sim *sim, const ry_open_boundary *b, ry_error *er
     const int dim = sim->dim;
     long cnt[3] = {1, 1, 1};
     for (int d = 0; d < dim; ++d) cnt[d] = lround((b->hi[d] - b->lo[d]) / sim->dx);
-    const size_t total = (size_t)cnt[0] * (size_t)cnt[1] * (size_t)cnt[2];
+    const double total_d = (double)cnt[0] * (double)cnt[1] * (double)cnt[2];
+    RY_CHECK(err, total_d <= (double)ry_particles_limit(), RY_ERR_RANGE,
+             "inlet zone would hold %.4g particles, more than the limit of %zu", total_d,
+             ry_particles_limit());
+    const size_t total = (size_t)total_d;
     size_t first;
     RY_TRY(ry_particles_add(ps, total, &first, err));
     size_t i = first;
@@ -69,9 +73,9 @@ ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
         if ((st = ry_case_vector(c, k, NULL, dim, b->hi, err)) != RY_OK) break;
         for (int d = 0; d < dim && st == RY_OK; ++d) {
             double len = (b->hi[d] - b->lo[d]) / sim->dx;
-            if (!(len >= 0.999) || fabs(len - round(len)) > 1e-6)
+            if (!(len >= 0.999 && len < 1e6) || fabs(len - round(len)) > 1e-6)
                 st = ry_error_set(err, RY_ERR_INPUT,
-                                  "%s: key '%s': the zone must span a whole number (at least one) "
+                                  "%s: key '%s': the zone must span a whole number (1 to 1e6) "
                                   "of particle spacings in every direction (%g spacings)",
                                   ry_case_where(c, k, where, sizeof where), k, len);
         }

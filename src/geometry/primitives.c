@@ -8,8 +8,9 @@
 /* Number of lattice points lo + (i + 1/2) dx inside [a, b] (with a tolerance of 1e-9 spacings,
  * so that a box exactly n spacings wide gets n points). */
 static long lattice_count(double a, double b, double dx) {
-    long n = (long)floor((b - a) / dx + 1e-9);
-    return n < 0 ? 0 : n;
+    double q = floor((b - a) / dx + 1e-9);
+    if (!(q > 0)) return 0;
+    return q < 1e9 ? (long)q : 1000000000L; /* far beyond any particle limit */
 }
 
 typedef int (*inside_fn)(const double *p, const void *ctx);
@@ -20,12 +21,13 @@ static ry_status fill_lattice(ry_particles *ps, const double *lo, const long *n,
                               size_t *added, ry_error *err) {
     int dim = ps->dim;
     long nz = dim > 2 ? n[2] : 1;
-    size_t total = (size_t)n[0] * (size_t)n[1] * (size_t)nz;
+    const double total_d = (double)n[0] * (double)n[1] * (double)nz;
     size_t count = 0;
     size_t limit = ry_particles_limit();
     limit = limit < UINT32_MAX / 8 ? 8 * limit : UINT32_MAX;
-    RY_CHECK(err, total < limit, RY_ERR_RANGE,
-             "body would hold %zu lattice points: spacing too small for its size", total);
+    RY_CHECK(err, total_d < (double)limit, RY_ERR_RANGE,
+             "body would hold %.4g lattice points: spacing too small for its size", total_d);
+    const size_t total = (size_t)total_d;
     size_t room = ry_particles_limit() > ps->n ? ry_particles_limit() - ps->n : 0;
     RY_TRY(ry_particles_reserve(ps, ps->n + (total < room ? total : room), err));
     for (long k = 0; k < nz; ++k)
