@@ -355,46 +355,108 @@ size_t ry_sim_count_outside(const ry_sim *sim) {
     return count;
 }
 
+/* What is wrong with particle i (NULL when nothing); why receives formatted reasons. */
+static const char *particle_problem(const ry_sim *sim, size_t i, char *why, size_t size) {
+    const ry_particles *ps = &sim->ps;
+    const ry_guard *g = &sim->guard;
+    double v2 = 0;
+    for (int d = 0; d < sim->dim; ++d) {
+        double x = ps->f[RY_F_X + d][i], v = ps->f[RY_F_VX + d][i];
+        if (!isfinite(x)) return "position is not finite";
+        if (!isfinite(v)) return "velocity is not finite";
+        v2 += v * v;
+    }
+    const double rho = ps->f[RY_F_RHO][i];
+    if (!isfinite(ps->f[RY_F_P][i])) return "pressure is not finite";
+    if (!(rho > 0 && isfinite(rho))) return "density is not positive and finite";
+    if (g->max_speed > 0 && v2 > g->max_speed * g->max_speed) {
+        snprintf(why, size, "speed %.4g m/s exceeds guard.max_speed = %g m/s", sqrt(v2),
+                 g->max_speed);
+        return why;
+    }
+    if (ps->kind[i] == RY_KIND_FLUID) {
+        const double r = rho / sim->mat[ps->material[i]].density;
+        if ((g->rho_min > 0 && r < g->rho_min) || (g->rho_max > 0 && r > g->rho_max)) {
+            snprintf(why, size,
+                     "density %.6g kg/m^3 is %.4g times the reference, outside "
+                     "guard.density_min..density_max = %g..%g",
+                     rho, r, g->rho_min, g->rho_max);
+            return why;
+        }
+    }
+    return NULL;
+}
+
+typedef struct check_ctx {
+    const double *const *x, *const *v, *rho, *p;
+    const uint8_t *kind, *material;
+    const double *inv_rho0, *lo, *hi;
+    double v2max, rmin, rmax;
+} check_ctx;
+
+/* Whether particle i passes every guard (out: whether it lies outside the domain); dim is a
+ * literal at each call, so that the loops below compile for 2D and 3D separately. */
+static inline __attribute__((always_inline)) int check_one(const check_ctx *c, size_t i,
+                                                           const int dim, int *out) {
+    int ok = 1, o = 0;
+    double v2 = 0;
+    for (int d = 0; d < dim; ++d) {
+        const double xi = c->x[d][i], vi = c->v[d][i];
+        ok &= isfinite(xi) & isfinite(vi);
+        v2 += vi * vi;
+        o |= !(xi >= c->lo[d]) | !(xi < c->hi[d]);
+    }
+    const double r = c->rho[i];
+    ok &= isfinite(c->p[i]) & (r > 0) & isfinite(r) & (v2 <= c->v2max);
+    const double q = r * c->inv_rho0[c->material[i]];
+    ok &= (c->kind[i] != RY_KIND_FLUID) | ((q >= c->rmin) & (q <= c->rmax));
+    *out = o;
+    return ok;
+}
+
+/* clang-format off */
+#define RY_CHECK_LOOP_(DIM)                                                                        \
+    _Pragma("omp parallel for schedule(static) reduction(min : first) reduction(+ : fluid, outside)") \
+    for (size_t i = 0; i < n; ++i) {                                                               \
+        int out;                                                                                   \
+        const int ok = check_one(&c, i, DIM, &out);                                                \
+        const int isf = ps->kind[i] == RY_KIND_FLUID;                                              \
+        fluid += (size_t)isf;                                                                      \
+        outside += (size_t)(isf & out);                                                            \
+        first = ok ? first : (i < first ? i : first);                                              \
+    }
+/* clang-format on */
+
 ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const ry_guard *g = &sim->guard;
-    size_t bad = 0, first = 0, fluid = 0, outside = 0;
-    char why[160], what[160] = "";
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    double inv_rho0[256];
+    for (int m = 0; m < sim->nmat && m < 256; ++m) inv_rho0[m] = 1.0 / sim->mat[m].density;
     const double v2max = g->max_speed > 0 ? g->max_speed * g->max_speed : INFINITY;
-    for (size_t i = 0; i < ps->n; ++i) {
-        const char *w = NULL;
-        double v2 = 0;
-        int out = 0;
-        for (int d = 0; d < sim->dim && !w; ++d) {
-            double x = ps->f[RY_F_X + d][i], v = ps->f[RY_F_VX + d][i];
-            if (!isfinite(x))
-                w = "position is not finite";
-            else if (!isfinite(v))
-                w = "velocity is not finite";
-            v2 += v * v;
-            out |= !(x >= sim->box.lo[d] && x < sim->box.hi[d]);
-        }
-        const double rho = ps->f[RY_F_RHO][i];
-        if (!w && !isfinite(ps->f[RY_F_P][i])) w = "pressure is not finite";
-        if (!w && !(rho > 0 && isfinite(rho))) w = "density is not positive and finite";
-        if (!w && v2 > v2max) {
-            snprintf(why, sizeof why, "speed %.4g m/s exceeds guard.max_speed = %g m/s", sqrt(v2),
-                     g->max_speed);
-            w = why;
-        }
-        if (ps->kind[i] == RY_KIND_FLUID) {
-            ++fluid;
-            outside += out;
-            const double r = rho / sim->mat[ps->material[i]].density;
-            if (!w && ((g->rho_min > 0 && r < g->rho_min) || (g->rho_max > 0 && r > g->rho_max))) {
-                snprintf(why, sizeof why,
-                         "density %.6g kg/m^3 is %.4g times the reference, outside "
-                         "guard.density_min..density_max = %g..%g",
-                         rho, r, g->rho_min, g->rho_max);
-                w = why;
-            }
-        }
-        if (w) {
+    const double rmin = g->rho_min, rmax = g->rho_max > 0 ? g->rho_max : INFINITY;
+    const double *x[3], *v[3];
+    for (int d = 0; d < 3; ++d) {
+        x[d] = ps->f[RY_F_X + (d < dim ? d : 0)];
+        v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+    }
+    const double *rho = ps->f[RY_F_RHO], *p = ps->f[RY_F_P];
+    size_t first = SIZE_MAX, fluid = 0, outside = 0;
+    check_ctx c = {x,        v,           rho,         p,     ps->kind, ps->material,
+                   inv_rho0, sim->box.lo, sim->box.hi, v2max, rmin,     rmax};
+    /* One pass without branches on the common path; the diagnosis is made afterwards. */
+    if (dim == 2) {
+        RY_CHECK_LOOP_(2)
+    } else {
+        RY_CHECK_LOOP_(3)
+    }
+    size_t bad = 0;
+    char why[160], what[160] = "";
+    if (first != SIZE_MAX) {
+        for (size_t i = first; i < n; ++i) {
+            const char *w = particle_problem(sim, i, why, sizeof why);
+            if (!w) continue;
             if (!bad) {
                 first = i;
                 snprintf(what, sizeof what, "%s", w);
@@ -415,10 +477,8 @@ ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
         for (size_t i = 0; i < ps->n; ++i) {
             if (ps->kind[i] != RY_KIND_FLUID) continue;
             int out = 0;
-            for (int d = 0; d < sim->dim; ++d) {
-                double x = ps->f[RY_F_X + d][i];
-                out |= !(x >= sim->box.lo[d] && x < sim->box.hi[d]);
-            }
+            for (int d = 0; d < dim; ++d)
+                out |= !(x[d][i] >= sim->box.lo[d] && x[d][i] < sim->box.hi[d]);
             if (out) {
                 first = i;
                 break;
