@@ -7,12 +7,7 @@
 set -u
 RY=$1
 SRC=$2
-T=$(mktemp -d /tmp/ryushi_guard_XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fail=$((fail + 1)); }
+. "$SRC/tests/cli/lib.sh"
 DAM="$SRC/cases/dam_break_seed.yaml"
 SET="--set spacing=0.0125 --set time.end=0.2"
 
@@ -61,5 +56,5 @@ for f in "$T/full"/*.vtp; do
 done
 ok
 
-echo "guard tests: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+printf "guard tests: "
+finish

@@ -7,12 +7,7 @@
 set -u
 RY=$1
 SRC=$2
-T=$(mktemp -d /tmp/ryushi_restart_XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL: $*"; fail=$((fail + 1)); }
+. "$SRC/tests/cli/lib.sh"
 
 # same A B: every result file of run A is byte for byte in run B
 same() {
@@ -152,5 +147,5 @@ out=$("$RY" run "$BEAM" --restart "$T/part" -o "$T/wrong" 2>&1)
 out=$("$RY" run "$DAM" --restart "$T/nothing" 2>&1)
 [ $? -eq 2 ] && printf '%s' "$out" | grep -q "no checkpoint" && ok || bad "missing checkpoint: $out"
 
-echo "restart tests: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+printf "restart tests: "
+finish
