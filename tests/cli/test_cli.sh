@@ -48,7 +48,8 @@ ls "$T/run" | grep -q "tmp" && bad "temporary files left in the output" || ok
 "$RY" info "$SRC/cases/dam_break_seed.yaml" | grep -q "bytes/particle" && ok || bad "info lacks bytes/particle"
 
 # SIGINT: a long run stops cleanly, writes its state and exits 130.
-"$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/int" --set spacing=0.0125 > "$T/int.log" 2>&1 &
+"$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/int" --set spacing=0.0125 --set time.dt_max=1e-5 \
+    > "$T/int.log" 2>&1 &
 pid=$!
 sleep 2
 kill -INT $pid
