@@ -76,7 +76,7 @@ printf '%s' "$out" | grep -q "checksum good" && printf '%s' "$out" | grep -q "fi
 
 # 4. SIGTERM mid-run: exit 130 with a checkpoint, continued to the same end.
 # shellcheck disable=SC2086
-"$RY" run "$DAM" $DAMSET --set time.dt_max=2e-5 -o "$T/sig" > "$T/sig.log" 2>&1 &
+"$RY" run "$DAM" $DAMSET --set time.dt_max=1e-5 -o "$T/sig" > "$T/sig.log" 2>&1 &
 pid=$!
 sleep 1
 kill -TERM "$pid"
@@ -85,9 +85,9 @@ rc=$?
 [ "$rc" -eq 130 ] || bad "SIGTERM: exit $rc, expected 130: $(cat "$T/sig.log")"
 grep -q "continue with --restart" "$T/sig.log" && ok || bad "no checkpoint named: $(cat "$T/sig.log")"
 # shellcheck disable=SC2086
-run sigfull "$DAM" $DAMSET --set time.dt_max=2e-5
+run sigfull "$DAM" $DAMSET --set time.dt_max=1e-5
 # shellcheck disable=SC2086
-"$RY" run "$DAM" $DAMSET --set time.dt_max=2e-5 --restart "$T/sig" > "$T/sig2.log" 2>&1 ||
+"$RY" run "$DAM" $DAMSET --set time.dt_max=1e-5 --restart "$T/sig" > "$T/sig2.log" 2>&1 ||
     bad "restart after SIGTERM failed: $(cat "$T/sig2.log")"
 same "$T/sigfull" "$T/sig" "dam break restarted after SIGTERM"
 
