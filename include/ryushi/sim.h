@@ -48,9 +48,6 @@ typedef struct ry_scheme_type {
     /* Optional: lists up to max state variables (returns how many). Everything else a scheme
      * keeps must be either a particle field or derivable from the fields. */
     int (*state_vars)(void *state, ry_state_var *vars, int max);
-    /* Optional: called after the state was replaced by a checkpoint's or snapshot's (e.g. to
-     * rebuild data derived from the fields). */
-    void (*restored)(ry_sim *sim, void *state);
 } ry_scheme_type;
 
 /* The registered schemes, NULL-terminated. */
@@ -113,7 +110,6 @@ typedef struct ry_ckpt_policy {
     int at_end;           /* one at the end of the run */
     double next_t;        /* next simulated time due */
     double last_wall;     /* wall time of the last one */
-    long written;         /* written by this process */
 } ry_ckpt_policy;
 
 struct ry_sim {

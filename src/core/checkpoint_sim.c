@@ -218,7 +218,6 @@ ry_status ry_sim_checkpoint_load(ry_sim *sim, const ry_ck_reader *r, ry_error *e
         sim->open[q].count = (long)v;
     }
     if (sim->writer) RY_TRY(ry_writer_load(sim, r, err));
-    if (sim->scheme->restored) sim->scheme->restored(sim, sim->scheme_state);
     return RY_OK;
 }
 
@@ -284,7 +283,6 @@ ry_status ry_sim_checkpoint_now(ry_sim *sim, char *path, size_t path_size, ry_er
     RY_TRY(ry_mkdir_p(dir, err));
     ck_path(file, sizeof file, dir, sim->step);
     RY_TRY(ry_sim_checkpoint_write(sim, file, err));
-    sim->ckpt.written++;
     sim->ckpt.last_wall = ry_wall_time();
     if (path) snprintf(path, path_size, "%s", file);
     /* The new one is complete: only now are the oldest removed. */
@@ -447,7 +445,6 @@ ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_er
     ry_state_var vars[MAX_VARS];
     int nv = scheme_vars(sim, vars);
     for (int i = 0; i < nv && i < s->nv; ++i) (void)var_set(&vars[i], s->vars[i]);
-    if (sim->scheme->restored) sim->scheme->restored(sim, sim->scheme_state);
     char vtp[4200];
     snprintf(vtp, sizeof vtp, "%s/%s_last_good.vtp", sim->out_dir, sim->case_name);
     RY_TRY(ry_vtk_write_particles(vtp, ps, sim->t, err));

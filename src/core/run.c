@@ -15,8 +15,8 @@ static int checkpoint_due(ry_sim *sim, double eps) {
 }
 
 /* On instability: the last good state goes to disk (VTK and checkpoint), named in the message. */
-static ry_status keep_last_good(ry_sim *sim, ry_status st, ry_error *err) {
-    if (!sim->snapshot) return st;
+static void keep_last_good(ry_sim *sim, ry_error *err) {
+    if (!sim->snapshot) return;
     char path[4300];
     ry_error e = {0};
     if (ry_sim_snapshot_write(sim, path, sizeof path, &e) == RY_OK) {
@@ -29,7 +29,6 @@ static ry_status keep_last_good(ry_sim *sim, ry_status st, ry_error *err) {
         snprintf(err->msg + l, sizeof err->msg - l, "; the last good state was not written: %s",
                  e.msg);
     }
-    return st;
 }
 
 ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err) {
@@ -57,7 +56,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         double dt;
         st = sim->scheme->stable_dt(sim, sim->scheme_state, &dt, err);
         if (st != RY_OK) {
-            if (st == RY_ERR_UNSTABLE) keep_last_good(sim, st, err);
+            if (st == RY_ERR_UNSTABLE) keep_last_good(sim, err);
             goto done;
         }
         if (sim->dt_max > 0 && dt > sim->dt_max) dt = sim->dt_max;
@@ -65,7 +64,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             st = ry_error_set(err, RY_ERR_UNSTABLE,
                               "unstable at step %ld, t = %.6g s: time step %g is not positive",
                               sim->step, sim->t, dt);
-            keep_last_good(sim, st, err);
+            keep_last_good(sim, err);
             goto done;
         }
         /* Land on output times and the end time exactly (no sliver steps after them). */
@@ -77,7 +76,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         sim->dt = dt;
         st = sim->scheme->step(sim, sim->scheme_state, dt, err);
         if (st != RY_OK) {
-            if (st == RY_ERR_UNSTABLE) keep_last_good(sim, st, err);
+            if (st == RY_ERR_UNSTABLE) keep_last_good(sim, err);
             goto done;
         }
         sim->t += dt;
@@ -87,7 +86,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         psteps += (double)sim->ps.n;
         st = ry_sim_check(sim, err);
         if (st != RY_OK) {
-            keep_last_good(sim, st, err);
+            keep_last_good(sim, err);
             goto done;
         }
         if (snap_every > 0 && sim->step % snap_every == 0) {

@@ -34,7 +34,7 @@ static const ry_scheme_type scheme_static = {
     "static",    "particles do not move (geometry set-up and output only)",
     static_init, static_dt,
     static_step, static_free,
-    NULL,        NULL};
+    NULL};
 
 static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &ry_scheme_solid,
                                                     &scheme_static, NULL};

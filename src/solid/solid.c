@@ -764,8 +764,7 @@ const ry_scheme_type ry_scheme_solid = {
     solid_dt,
     solid_step,
     solid_free,
-    solid_vars,
-    NULL};
+    solid_vars};
 
 /* ---- probes ------------------------------------------------------------------------------- */
 
