@@ -61,6 +61,13 @@ typedef struct ry_nlist {
 ry_status ry_cells_build(ry_cell_list *cl, const ry_box *box, double radius, size_t n,
                          const double *const x[3], ry_error *err);
 void ry_cells_free(ry_cell_list *cl);
+/* Orders the particles of each cell by their x coordinate (ties by index) in cl->order, so
+ * that after a reordering along cl->order every row of cells (consecutive cells along x) holds
+ * its particles sorted by x. */
+void ry_cells_sort_x(ry_cell_list *cl, const double *x);
+/* The distinct cells neighbouring cell c (c included; per[d]: direction d wraps), in
+ * increasing order; returns how many (at most 27). */
+int ry_cells_neighbours(const ry_cell_list *cl, const int per[3], size_t c, size_t out[27]);
 
 /* Neighbour list from a built cell list (OpenMP-parallel, deterministic). */
 ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_box *box,

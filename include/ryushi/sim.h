@@ -50,6 +50,10 @@ typedef struct ry_scheme_type {
     int (*state_vars)(void *state, ry_state_var *vars, int max);
 } ry_scheme_type;
 
+/* Memory per particle of a set-up simulation: particle fields, cells, neighbour list and the
+ * scheme's own buffers. */
+double ry_sim_bytes_per_particle(const ry_sim *sim);
+
 /* The registered schemes, NULL-terminated. */
 const ry_scheme_type *const *ry_schemes(void);
 const ry_scheme_type *ry_scheme_find(const char *name);
@@ -134,20 +138,27 @@ struct ry_sim {
     /* neighbour search */
     ry_cell_list cells;
     ry_nlist nl;
-    double nl_radius;  /* support radius the list serves */
-    double nl_skin;    /* Verlet skin, a fraction of the radius: the list holds the pairs
-                          within radius (1 + skin) and is rebuilt when a particle has moved
-                          more than half the skin since the last build */
-    int reorder_every; /* reorder particles along cells every so many builds (0: never) */
-    long searches;     /* list builds so far */
-    long nl_reuses;    /* steps that reused the list */
-    int f_xref;        /* field: positions at the last build (x, y, z consecutive ids) */
-    int nl_restore;    /* after a restart: rebuild the list from the positions at the last
-                          build (xref), without reordering, so that it is the same list */
+    double nl_radius;   /* support radius the list serves */
+    double nl_skin;     /* Verlet skin, a fraction of the radius: the list holds the pairs
+                           within radius (1 + skin) and is rebuilt when a particle has moved
+                           more than half the skin since the last build */
+    int reorder_every;  /* reorder particles along cells every so many builds (0: never) */
+    int sort_always;    /* set by a scheme: reorder at every build (by cell, and by x within
+                           each cell), so that the particles of each cell are consecutive */
+    int cells_only;     /* set by a scheme: it needs the cells only, not the list `nl` */
+    long searches;      /* list builds so far */
+    long nl_generation; /* list and cell builds in this process (restarts included), for
+                           schemes that derive data from them; not checkpointed */
+    long nl_reuses;     /* steps that reused the list */
+    int f_xref;         /* field: positions at the last build (x, y, z consecutive ids) */
+    int nl_restore;     /* after a restart: rebuild the list from the positions at the last
+                           build (xref), without reordering, so that it is the same list */
 
     /* scheme */
     const ry_scheme_type *scheme;
     void *scheme_state;
+    size_t scheme_bytes; /* buffers the scheme holds besides particle fields (it keeps this up
+                            to date; for the memory figures of `ryushi bench`) */
 
     /* measurements */
     int nprobes;
@@ -180,11 +191,16 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
 void ry_sim_free(ry_sim *sim);
 
 /* Brings the neighbour list up to date for a support radius: rebuilt (and the particles
- * reordered along cells every reorder_every builds) when the radius or the particle count
- * changed or a particle moved more than half the skin since the last build; otherwise the
- * list is reused. Pair loops must skip pairs beyond the radius. Schemes call this at the
- * start of each force evaluation. */
+ * reordered along cells every reorder_every builds, or every build with sort_always) when the
+ * radius or the particle count changed or a particle moved more than half the skin since the last
+ * build; otherwise the list is reused. Pair loops must skip pairs beyond the radius. Schemes call
+ * this at the start of each force evaluation. */
 ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err);
+/* Whether a neighbour search has been made (a list, or the cells alone), so that a restored
+ * state must rebuild it from the positions of that search. */
+static inline int ry_sim_searched(const ry_sim *sim) {
+    return sim->nl_restore || (sim->cells_only ? sim->cells.start != NULL : sim->nl.offset != NULL);
+}
 
 /* Progress reports and the stop flag for ry_sim_run. */
 typedef struct ry_run_hooks {
@@ -221,6 +237,9 @@ ry_status ry_sim_check(const ry_sim *sim, ry_error *err);
 
 /* Counts fluid particles outside the domain box, and total mass of a kind. */
 size_t ry_sim_count_outside(const ry_sim *sim);
+/* Particles other than i within `radius` of it, found through the cells of the last neighbour
+ * search (radius at most the cell edge minus the distance moved since). */
+size_t ry_sim_count_within(const ry_sim *sim, size_t i, double radius);
 
 /* Profiles: read from the case (ry_sim_setup calls it), sampled and written as
  * profile_NAME.csv at each output time (ry_sim_write_output calls it), freed. */

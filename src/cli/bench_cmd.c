@@ -56,8 +56,7 @@ static double bench_once(int dim, double dx, long steps, const char *out_dir, si
     if (st == RY_OK) st = ry_sim_run(&sim, NULL, &stats, &err);
     if (st != RY_OK) fprintf(stderr, "ryushi: bench: %s\n", err.msg);
     *np = sim.ps.n;
-    *bpp = (double)ry_particles_bytes_per_particle(&sim.ps) +
-           ry_cells_bytes_per_particle(&sim.cells) + ry_nlist_bytes_per_particle(&sim.nl);
+    *bpp = ry_sim_bytes_per_particle(&sim);
     ry_sim_free(&sim);
     ry_case_free(c);
     return st == RY_OK ? stats.particle_steps_per_s : 0.0;

@@ -252,12 +252,18 @@ static int cmd_info(int argc, char **argv) {
         for (int m = 0; m < sim.nmat; ++m)
             printf(" %s (rho0 %g kg/m^3, nu %g m^2/s)", sim.mat[m].name, sim.mat[m].density,
                    sim.mat[m].viscosity);
-        double nb = sim.ps.n ? (double)sim.nl.offset[sim.ps.n] / (double)sim.ps.n : 0;
-        printf("\nneighbours      %.1f per particle (mean)\n", nb);
+        /* Pairs within the support (the run's list, if the scheme keeps one, also holds the
+         * skin). */
+        size_t pairs = 0;
+        for (size_t i = 0; i < sim.ps.n; ++i)
+            pairs += ry_sim_count_within(&sim, i, sim.kernel.radius);
+        printf("\nneighbours      %.1f per particle (mean, within the support)\n",
+               sim.ps.n ? (double)pairs / (double)sim.ps.n : 0.0);
         double bpp_ps = (double)ry_particles_bytes_per_particle(&sim.ps);
         double bpp_cl = ry_cells_bytes_per_particle(&sim.cells);
         double bpp_nl = ry_nlist_bytes_per_particle(&sim.nl);
-        printf("bytes/particle  %.0f (fields %.0f, cell list %.0f, neighbour list %.0f)\n",
+        printf("bytes/particle  %.0f (fields %.0f, cell list %.0f, neighbour list %.0f; the "
+               "scheme's buffers come at the first step)\n",
                bpp_ps + bpp_cl + bpp_nl, bpp_ps, bpp_cl, bpp_nl);
         printf("time            end %g s, output every %g s\n", sim.t_end, sim.output_interval);
         printf("output          %s\n", sim.out_dir);

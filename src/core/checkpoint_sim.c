@@ -62,7 +62,7 @@ static ry_status put_sim(const ry_sim *sim, ry_ck_writer *w, ry_error *err) {
     RY_TRY(ry_ck_put_f64(w, "neighbors/radius", sim->nl_radius, err));
     RY_TRY(ry_ck_put_i64(w, "neighbors/searches", sim->searches, err));
     RY_TRY(ry_ck_put_i64(w, "neighbors/reuses", sim->nl_reuses, err));
-    RY_TRY(ry_ck_put_i64(w, "neighbors/have_list", sim->nl.offset != NULL || sim->nl_restore, err));
+    RY_TRY(ry_ck_put_i64(w, "neighbors/have_list", ry_sim_searched(sim), err));
     RY_TRY(ry_ck_put_i64(w, "particles/n", (int64_t)ps->n, err));
     RY_TRY(ry_ck_put_i64(w, "particles/next_id", ps->next_id, err));
     RY_TRY(ry_ck_put(w, "particles/id", RY_CK_I64, ps->id, ps->n, err));
@@ -440,7 +440,7 @@ ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_er
     sim->nl_radius = s->nl_radius;
     sim->step = s->step;
     sim->searches = s->searches;
-    sim->nl_restore = sim->nl.offset != NULL;
+    sim->nl_restore = ry_sim_searched(sim);
     ry_nlist_free(&sim->nl);
     ry_state_var vars[MAX_VARS];
     int nv = scheme_vars(sim, vars);

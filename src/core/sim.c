@@ -313,7 +313,9 @@ static double max_drift2(const ry_sim *sim) {
 ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const double skin = sim->nl_skin * radius;
-    if (sim->nl.offset && sim->nl.n == ps->n && radius == sim->nl_radius && skin > 0 &&
+    const int have = sim->cells_only ? sim->cells.start && sim->cells.n == ps->n
+                                     : sim->nl.offset && sim->nl.n == ps->n;
+    if (have && !sim->nl_restore && radius == sim->nl_radius && skin > 0 &&
         max_drift2(sim) < 0.25 * skin * skin) {
         sim->nl_reuses++;
         return RY_OK;
@@ -325,20 +327,53 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
         sim->nl_restore = 0;
         for (int d = 0; d < 3; ++d) x[d] = d < sim->dim ? ps->f[sim->f_xref + d] : NULL;
         RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
+        sim->nl_generation++;
+        if (sim->cells_only) return RY_OK;
         return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err);
     }
     sim->nl_restore = 0;
     ry_particles_coords(ps, x);
     RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
-    if (sim->reorder_every > 0 && sim->searches % sim->reorder_every == 0) {
+    if (sim->sort_always || (sim->reorder_every > 0 && sim->searches % sim->reorder_every == 0)) {
+        if (sim->sort_always) ry_cells_sort_x(&sim->cells, x[0]);
         RY_TRY(ry_particles_permute(ps, sim->cells.order, err));
         ry_particles_coords(ps, x);
         RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
     }
     sim->searches++;
+    sim->nl_generation++;
     sim->nl_radius = radius;
     for (int d = 0; d < sim->dim; ++d) memcpy(ps->f[sim->f_xref + d], x[d], ps->n * sizeof(double));
+    if (sim->cells_only) return RY_OK;
     return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err);
+}
+
+double ry_sim_bytes_per_particle(const ry_sim *sim) {
+    const size_t n = sim->ps.n;
+    double b = (double)ry_particles_bytes_per_particle(&sim->ps) +
+               ry_cells_bytes_per_particle(&sim->cells) + ry_nlist_bytes_per_particle(&sim->nl);
+    if (n) b += (double)sim->scheme_bytes / (double)n;
+    return b;
+}
+
+size_t ry_sim_count_within(const ry_sim *sim, size_t i, double radius) {
+    const ry_cell_list *cl = &sim->cells;
+    const ry_particles *ps = &sim->ps;
+    if (!cl->start || cl->n != ps->n) return 0;
+    int per[3];
+    for (int d = 0; d < 3; ++d) per[d] = d < sim->dim && sim->box.periodic[d];
+    size_t cells[27], count = 0;
+    const int nc = ry_cells_neighbours(cl, per, cl->cell_of[i], cells);
+    for (int c = 0; c < nc; ++c)
+        for (size_t q = cl->start[cells[c]]; q < cl->start[cells[c] + 1]; ++q) {
+            const uint32_t j = cl->order[q];
+            double dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < sim->dim; ++d) dx[d] = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
+            ry_box_min_image(&sim->box, dx);
+            for (int d = 0; d < sim->dim; ++d) r2 += dx[d] * dx[d];
+            count += j != i && r2 < radius * radius;
+        }
+    return count;
 }
 
 size_t ry_sim_count_outside(const ry_sim *sim) {

@@ -234,6 +234,26 @@ ry_status ry_cells_build(ry_cell_list *cl, const ry_box *box, double radius, siz
     return RY_OK;
 }
 
+void ry_cells_sort_x(ry_cell_list *cl, const double *x) {
+    uint32_t *order = cl->order;
+    const size_t *start = cl->start;
+    const long long nc = (long long)cl->ncells;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (long long c = 0; c < nc; ++c) {
+        /* Insertion sort: a few particles per cell, usually in order already. */
+        for (size_t q = start[c] + 1; q < start[c + 1]; ++q) {
+            const uint32_t v = order[q];
+            size_t k = q;
+            while (k > start[c] &&
+                   (x[order[k - 1]] > x[v] || (x[order[k - 1]] == x[v] && order[k - 1] > v))) {
+                order[k] = order[k - 1];
+                --k;
+            }
+            order[k] = v;
+        }
+    }
+}
+
 void ry_cells_free(ry_cell_list *cl) {
     if (!cl) return;
     free(cl->start);
@@ -250,7 +270,7 @@ double ry_cells_bytes_per_particle(const ry_cell_list *cl) {
 }
 
 /* The distinct cells neighbouring cell c (c included), in increasing order; returns how many. */
-static int neighbour_cells(const ry_cell_list *cl, const int per[3], size_t c, size_t out[27]) {
+int ry_cells_neighbours(const ry_cell_list *cl, const int per[3], size_t c, size_t out[27]) {
     long idx[3][3];
     int m[3];
     size_t rest = c;
@@ -307,7 +327,7 @@ static int cmp_u32(const void *a, const void *b) {
 static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int dim,
                                const double *const x[3], double r2max, size_t i, uint32_t *out) {
     size_t cells[27];
-    int nc = neighbour_cells(cl, g->periodic, cl->cell_of[i], cells);
+    int nc = ry_cells_neighbours(cl, g->periodic, cl->cell_of[i], cells);
     size_t cnt = 0;
     const size_t *start = cl->start;
     const uint32_t *order = cl->order;

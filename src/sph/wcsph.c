@@ -48,6 +48,14 @@ typedef struct wcsph {
     size_t pack_cap;
     double *scratch; /* per thread: the in-range neighbours of one particle, field by field */
     size_t scratch_cap;
+    int fast;    /* the cell-range pair loop in single precision (scheme.pair_loop) */
+    void *fpack; /* its per-particle data: positions (3 arrays of fpack_stride doubles), then
+                    FK_COUNT arrays of fpack_stride floats; padded, 64-byte aligned */
+    size_t fpack_stride, fpack_cap;
+    uint32_t *rng; /* candidate ranges per particle: 3 (2D) or 9 (3D) pairs [a, b) */
+    size_t rng_cap;
+    int nrange;            /* ranges per particle */
+    long rng_gen;          /* sim->nl_generation they were made for */
     int repulse;           /* wall repulsion on */
     double rep_r0, rep_d;  /* its radius and strength */
     int tvf;               /* transport-velocity formulation */
@@ -65,6 +73,9 @@ static const char *const density_names[] = {"continuity", "summation", NULL};
 static const char *const eos_names[] = {"tait", "linear", "ideal_gas", NULL};
 static const char *const diffusion_names[] = {"none", "molteni", "fourtakas", NULL};
 static const char *const wall_names[] = {"no_slip", "free_slip", NULL};
+enum { LOOP_AUTO, LOOP_CELLS, LOOP_LIST };
+static const char *const loop_names[] = {"auto", "cells", "list", NULL};
+static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why);
 
 static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
     wcsph *w = calloc(1, sizeof *w);
@@ -113,6 +124,16 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         RY_CHECK(err, w->density == DENS_CONTINUITY, RY_ERR_INPUT,
                  "%s: key 'scheme.variable_h': needs scheme.density: continuity",
                  ry_case_where(c, "scheme.variable_h", where, sizeof where));
+    int loop;
+    RY_TRY(ry_case_choice(c, "scheme.pair_loop", "auto", loop_names, &loop, err));
+    const char *why;
+    w->fast = loop != LOOP_LIST && fast_eligible(sim, w, &why);
+    if (loop == LOOP_CELLS)
+        RY_CHECK(err, w->fast, RY_ERR_INPUT, "%s: key 'scheme.pair_loop': 'cells' needs %s",
+                 ry_case_where(c, "scheme.pair_loop", where, sizeof where), why);
+    sim->sort_always = w->fast;
+    sim->cells_only = w->fast && w->density == DENS_CONTINUITY;
+    w->rng_gen = -1;
     if (w->eos == EOS_IDEAL_GAS)
         RY_CHECK(err, w->energy, RY_ERR_INPUT,
                  "%s: key 'scheme.eos': ideal_gas needs scheme.energy: true",
@@ -185,6 +206,8 @@ static void wcsph_free(void *state) {
     free(w->rho0m);
     free(w->pack);
     free(w->scratch);
+    free(w->fpack);
+    free(w->rng);
     free(w);
 }
 
@@ -305,57 +328,71 @@ typedef void (*density_driver)(ry_sim *sim, const wcsph *w);
     }
 
 /* Wall particles: pressure, density and ghost velocity extrapolated from the fluid (Adami et
- * al. 2012, eq. 22-23 and 27-28). */
-static void wall_pass(ry_sim *sim, const wcsph *w) {
-    ry_particles *ps = &sim->ps;
+ * al. 2012, eq. 22-23 and 27-28). The sums of wall particle i over its fluid neighbours j, from
+ * the list (rows) or from the candidate ranges of the cell-range loop. */
+typedef struct wall_sums {
+    double sw, sp, srx, sv[3];
+} wall_sums;
+
+static inline __attribute__((always_inline)) void wall_sums_list(const ry_sim *sim, size_t i,
+                                                                 wall_sums *s) {
+    const ry_particles *ps = &sim->ps;
     const ry_kernel *k = &sim->kernel;
     const int dim = sim->dim;
-    const size_t n = ps->n;
-    const double *x[3];
-    ry_particles_coords(ps, x);
-    double *restrict p = ps->f[RY_F_P];
-    double *restrict rho = ps->f[RY_F_RHO];
-    const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
-    const double *g = sim->gravity;
+    const double *p = ps->f[RY_F_P], *rho = ps->f[RY_F_RHO], *g = sim->gravity;
     const double rad2 = k->radius * k->radius;
     const int periodic = is_periodic(sim);
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        uint32_t j = sim->nl.j[q];
+        if (ps->kind[j] != RY_KIND_FLUID && ps->kind[j] != RY_KIND_OUTLET) continue;
+        double dx[3] = {0, 0, 0}, r2 = 0;
+        for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
+        if (periodic) ry_box_min_image(&sim->box, dx);
+        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        if (r2 >= rad2) continue;
+        double wij = ry_kernel_w(k, sqrt(r2));
+        double gr = 0;
+        for (int d = 0; d < dim; ++d) gr += g[d] * dx[d];
+        s->sw += wij;
+        s->sp += p[j] * wij;
+        s->srx += rho[j] * gr * wij;
+        for (int d = 0; d < dim; ++d) s->sv[d] += ps->f[RY_F_VX + d][j] * wij;
+    }
+}
+
+/* Pressure, density and ghost velocity of wall (and inlet) particle i from its sums. */
+static inline void wall_set(ry_sim *sim, const wcsph *w, size_t i, const wall_sums *s) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim, inlet = ps->kind[i] == RY_KIND_INLET;
+    const int mat = ps->material[i];
+    if (s->sw > 0) {
+        const double pw = (s->sp + s->srx) / s->sw;
+        ps->f[RY_F_P][i] = pw;
+        ps->f[RY_F_RHO][i] = eos_density(w, mat, pw);
+        for (int d = 0; d < dim; ++d)
+            ps->f[w->f_vg[d]][i] =
+                inlet ? ps->f[RY_F_VX + d][i] : 2.0 * ps->f[RY_F_VX + d][i] - s->sv[d] / s->sw;
+    } else {
+        ps->f[RY_F_P][i] = w->p_background;
+        ps->f[RY_F_RHO][i] = w->rho0m[mat];
+        for (int d = 0; d < dim; ++d) ps->f[w->f_vg[d]][i] = ps->f[RY_F_VX + d][i];
+    }
+}
+
+/* Inlet buffers take their pressure from the fluid too (their velocity is prescribed); outlet
+ * buffers keep the pressure set at the outlet. */
+static inline int wall_like(const ry_particles *ps, size_t i) {
+    return ps->kind[i] == RY_KIND_WALL || ps->kind[i] == RY_KIND_INLET;
+}
+
+static void wall_pass(ry_sim *sim, const wcsph *w) {
+    const size_t n = sim->ps.n;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
-        /* Inlet buffers take their pressure from the fluid too (their velocity is prescribed);
-         * outlet buffers keep the pressure set at the outlet. */
-        const int inlet = ps->kind[i] == RY_KIND_INLET;
-        if (ps->kind[i] != RY_KIND_WALL && !inlet) continue;
-        double sw = 0, sp = 0, srx = 0, sv[3] = {0, 0, 0};
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            uint32_t j = nb[q];
-            if (ps->kind[j] != RY_KIND_FLUID && ps->kind[j] != RY_KIND_OUTLET) continue;
-            double dx[3] = {0, 0, 0}, r2 = 0;
-            for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
-            if (periodic) ry_box_min_image(&sim->box, dx);
-            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
-            if (r2 >= rad2) continue;
-            double wij = ry_kernel_w(k, sqrt(r2));
-            double gr = 0;
-            for (int d = 0; d < dim; ++d) gr += g[d] * dx[d];
-            sw += wij;
-            sp += p[j] * wij;
-            srx += rho[j] * gr * wij;
-            for (int d = 0; d < dim; ++d) sv[d] += ps->f[RY_F_VX + d][j] * wij;
-        }
-        int mat = ps->material[i];
-        if (sw > 0) {
-            double pw = (sp + srx) / sw;
-            p[i] = pw;
-            rho[i] = eos_density(w, mat, pw);
-            for (int d = 0; d < dim; ++d)
-                ps->f[w->f_vg[d]][i] =
-                    inlet ? ps->f[RY_F_VX + d][i] : 2.0 * ps->f[RY_F_VX + d][i] - sv[d] / sw;
-        } else {
-            p[i] = w->p_background;
-            rho[i] = w->rho0m[mat];
-            for (int d = 0; d < dim; ++d) ps->f[w->f_vg[d]][i] = ps->f[RY_F_VX + d][i];
-        }
+        if (!wall_like(&sim->ps, i)) continue;
+        wall_sums s = {0, 0, 0, {0, 0, 0}};
+        wall_sums_list(sim, i, &s);
+        wall_set(sim, w, i, &s);
     }
 }
 
@@ -366,6 +403,24 @@ typedef struct force_out {
 /* Per-particle record read by the pair loop: everything about j in two (2D, 16 doubles) or
  * three (3D, 24 doubles) cache lines instead of one array per quantity. Vectors come first, one
  * component per dimension (position, velocity, velocity seen by viscous terms), then scalars. */
+/* Fields of the cell-range loop (single precision, one array each; see fast_particle). */
+enum {
+    FK_U,
+    FK_V,
+    FK_W,
+    FK_UG,
+    FK_VG,
+    FK_WG,
+    FK_DRHO, /* rho - rho_ref */
+    FK_PRHO2,
+    FK_VOL,
+    FK_MU,
+    FK_MASS,
+    FK_FLUID,
+    FK_VISC,
+    FK_P, /* pressure, for the wall pass */
+    FK_COUNT
+};
 enum { PK_RHO, PK_PRHO2, PK_VOL, PK_MU, PK_CS, PK_MASS, PK_FLUID, PK_VISC, PK_H, PK_NSCALAR };
 #define PK_X(dim) 0
 #define PK_U(dim) (dim)
@@ -382,6 +437,39 @@ static inline double wall_repulsion(double r2, int on, double r02, double D) {
     return D * (q12 - q4) / rr;
 }
 
+/* The single-precision record of particle i for the cell-range loop (mu_i and the viscous
+ * coupling as computed by prepare_pairs). */
+static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double mui, double visi) {
+    const ry_particles *ps = &sim->ps;
+    const size_t fs = w->fpack_stride;
+    double *restrict XP = (double *)w->fpack + i;
+    float *restrict F = (float *)((double *)w->fpack + 3 * fs) + i;
+    const double rhoi = ps->f[RY_F_RHO][i], inv_rho = 1.0 / rhoi, pi = ps->f[RY_F_P][i];
+    const double mi = ps->f[RY_F_MASS][i];
+    for (int d = 0; d < sim->dim; ++d) {
+        XP[d * fs] = ps->f[RY_F_X + d][i];
+        F[(FK_U + d) * fs] = (float)ps->f[RY_F_VX + d][i];
+        F[(FK_UG + d) * fs] = (float)ps->f[w->f_vg[d]][i];
+    }
+    F[FK_DRHO * fs] = (float)(rhoi - w->rho0m[0]);
+    F[FK_PRHO2 * fs] = (float)(pi * inv_rho * inv_rho);
+    F[FK_VOL * fs] = (float)(mi * inv_rho);
+    F[FK_MU * fs] = (float)mui;
+    F[FK_MASS * fs] = (float)mi;
+    F[FK_FLUID * fs] = ps->kind[i] == RY_KIND_FLUID || ps->kind[i] == RY_KIND_OUTLET ? 1.0f : 0.0f;
+    F[FK_VISC * fs] = (float)visi;
+    F[FK_P * fs] = (float)pi;
+}
+
+/* mu_i = rho_i nu (laminar viscosity) and the viscous coupling of particle i: fluid, open-
+ * boundary buffers, and no-slip walls (through their ghost velocity). */
+static inline double pack_mu(const ry_sim *sim, const wcsph *w, size_t i) {
+    return w->laminar ? sim->ps.f[RY_F_RHO][i] * sim->mat[sim->ps.material[i]].viscosity : 0.0;
+}
+static inline double pack_visc(const ry_sim *sim, const wcsph *w, size_t i) {
+    return sim->ps.kind[i] != RY_KIND_WALL || w->wall == WALL_NO_SLIP ? 1.0 : 0.0;
+}
+
 /* Per-particle quantities the pair loop reads (computed once per evaluation, so that the pair
  * loop has no divisions by rho and no branches on the kind of j). */
 static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
@@ -396,7 +484,24 @@ static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
     const double *restrict rho = ps->f[RY_F_RHO], *restrict p = ps->f[RY_F_P];
     const double *restrict m = ps->f[RY_F_MASS];
     const size_t stride = PK_STRIDE(dim);
-    if (w->pack_cap < n) {
+    if (w->fast) {
+        const size_t fs = (n + 8 + 15) & ~(size_t)15; /* room for a last vector */
+        if (w->fpack_cap < fs) {
+            /* Positions (3 x fs doubles) then the FK_COUNT float fields, 64-byte aligned. */
+            free(w->fpack);
+            w->fpack = aligned_alloc(64, fs * (3 * sizeof(double) + FK_COUNT * sizeof(float)));
+            w->fpack_cap = w->fpack ? fs : 0;
+            RY_CHECK(err, w->fpack != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
+        }
+        w->fpack_stride = fs;
+        /* Padding: far away and inert. */
+        double *xp = w->fpack;
+        float *fk = (float *)(xp + 3 * fs);
+        for (int d = 0; d < 3; ++d)
+            for (size_t i = n; i < fs; ++i) xp[d * fs + i] = 1e10;
+        for (int k = 0; k < FK_COUNT; ++k)
+            for (size_t i = n; i < fs; ++i) fk[k * fs + i] = 0.0f;
+    } else if (w->pack_cap < n) {
         double *pk = realloc(w->pack, n * PK_STRIDE(3) * sizeof(double));
         RY_CHECK(err, pk != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
         w->pack = pk;
@@ -411,17 +516,12 @@ static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
     }
     const double *restrict hh = ps->f[RY_F_H];
     const uint8_t *restrict kind = ps->kind;
-    const uint8_t *restrict matl = ps->material;
-    const ry_material *mat = sim->mat;
     double *restrict pack = w->pack;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         const int fluid = kind[i] == RY_KIND_FLUID, wall = kind[i] == RY_KIND_WALL;
         const double rhoi = rho[i], inv_rho = 1.0 / rhoi;
-        const double mui = w->laminar ? rhoi * mat[matl[i]].viscosity : 0.0;
-        /* Viscous coupling: fluid, open-boundary buffers, and no-slip walls (through their
-         * ghost velocity). */
-        const double visi = (!wall || noslip) ? 1.0 : 0.0;
+        const double mui = pack_mu(sim, w, i), visi = pack_visc(sim, w, i);
         if (tvf) {
             vol[i] = m[i] / rhoi;
             mu[i] = mui;
@@ -431,6 +531,10 @@ static ry_status prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
         /* Velocity seen by viscous terms: the ghost velocity on no-slip walls. */
         if (!wall || !noslip)
             for (int d = 0; d < dim; ++d) vg[d][i] = v[d][i];
+        if (w->fast) {
+            fpack_one(sim, w, i, mui, visi);
+            continue;
+        }
         double *restrict P = pack + i * stride;
         for (int d = 0; d < dim; ++d) {
             P[PK_X(dim) + d] = x[d][i];
@@ -700,6 +804,397 @@ static const fluid_driver fluid_drivers[RY_KERNEL_COUNT][2][2] = {
 #undef RY_FLUID_DRIVERS_
 #undef RY_FLUID_DRIVER_
 
+/* The cell-range pair loop (scheme.pair_loop: cells). The particles are sorted by cell at every
+ * neighbour search (sim->sort_always), so the candidates of particle i are the particles of the
+ * 3 (2D) or 9 (3D) rows of cells around its cell at the last search: consecutive index ranges,
+ * a superset of the Verlet list. The pair terms run as one SIMD loop over each range, in
+ * single precision (eight pairs per AVX2 instruction), with the pairs beyond the support masked:
+ * no neighbour list is read and no neighbour data is gathered or copied. Separations are formed
+ * from the double-precision positions and then rounded; densities enter as deviations from a
+ * reference density (so that rho_j - rho_i keeps its digits); the pair terms are summed in
+ * double precision. The state and the integrator stay in double precision. */
+
+typedef struct fast_ctx {
+    const uint8_t *kind;
+    const uint32_t *rng;
+    const float *fk; /* field k of particle j: fk[k * fs + j] */
+    size_t fs;
+    const double *x[3], *rho;
+    double *a[3], *drho;
+    const double *v[3], *rho0m;
+    const uint8_t *material;
+    double g[3], diff, rho_ref, inv_c02;
+    float rad2, inv_h, dnorm_h, h0, eta2, alpha, beta, rep_d, rep_r02, c0;
+    int cont, fourtakas;
+} fast_ctx;
+
+/* Eight lanes of single precision (GCC/Clang vector extensions: one AVX register, two SSE
+ * registers, or lane loops elsewhere). */
+typedef float v8f __attribute__((vector_size(32)));
+typedef int v8i __attribute__((vector_size(32)));
+typedef double v8d __attribute__((vector_size(64)));
+
+static inline v8f v8_load(const float *p) {
+    v8f v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+/* x_i - x_j for eight j, formed in double precision and rounded. */
+static inline v8f v8_sep(double xi, const double *xj) {
+    v8d v;
+    memcpy(&v, xj, sizeof v);
+    return __builtin_convertvector(xi - v, v8f);
+}
+/* m ? a : 0 for a lane mask m (all bits set or clear). */
+static inline v8f v8_and(v8i m, v8f a) {
+    return (v8f)(m & (v8i)a);
+}
+static inline v8f v8_sqrt(v8f a) {
+#if defined(__AVX__)
+    return __builtin_ia32_sqrtps256(a);
+#else
+    v8f r;
+    for (int k = 0; k < 8; ++k) r[k] = sqrtf(a[k]);
+    return r;
+#endif
+}
+/* Whether any lane of a mask is set. */
+static inline int v8_any(v8i m) {
+#if defined(__AVX__)
+    return !__builtin_ia32_ptestz256((__attribute__((vector_size(32))) long long)m,
+                                     (__attribute__((vector_size(32))) long long)m);
+#else
+    int a = 0;
+    for (int k = 0; k < 8; ++k) a |= m[k];
+    return a != 0;
+#endif
+}
+static inline double v8_sum(v8f a) {
+    double s = 0;
+    for (int k = 0; k < 8; ++k) s += (double)a[k];
+    return s;
+}
+
+/* (dW/dq)/q of the Wendland kernels (q < 2 is masked by the caller). */
+static inline v8f dshape_over_q_v8(const ry_kernel_type kt, v8f q) {
+    const v8f s = 0.5f * q, u = 1.0f - s, u2 = u * u;
+    return kt == RY_KERNEL_WENDLAND_C2 ? -5.0f * u2 * u
+                                       : (-14.0f / 3.0f) * u2 * u2 * u * (1.0f + 5.0f * s);
+}
+
+static inline __attribute__((always_inline)) void fast_particle(const fast_ctx *restrict c,
+                                                                size_t i, const int dim,
+                                                                const ry_kernel_type kt,
+                                                                double *amax2, double *vmax2) {
+    if (c->kind[i] != RY_KIND_FLUID) return;
+    const int nrange = dim > 2 ? 9 : 3;
+    const uint32_t *restrict rg = c->rng + (size_t)i * 2 * (size_t)nrange;
+    const size_t fs = c->fs;
+    const float *restrict fk = c->fk;
+    const double *restrict x0 = c->x[0], *restrict x1 = c->x[1], *restrict x2 = c->x[2];
+    const double xi = x0[i], yi = x1[i], zi = dim > 2 ? x2[i] : 0.0;
+    const float ui = fk[FK_U * fs + i], vi = fk[FK_V * fs + i];
+    const float wi = dim > 2 ? fk[FK_W * fs + i] : 0.0f;
+    const float dri = fk[FK_DRHO * fs + i], pri = fk[FK_PRHO2 * fs + i];
+    const float mui = fk[FK_MU * fs + i];
+    const float rhoi2 = 2.0f * (float)c->rho_ref + dri; /* rho_i + rho_j - dr_j */
+    const float inv_rhoi = (float)(1.0 / c->rho[i]);
+    const float rad2 = c->rad2, inv_h = c->inv_h, dnorm_h = c->dnorm_h, h0 = c->h0;
+    /* -alpha c_ij with c_ij = c0: the cell-range loop serves the Tait and linear equations of
+     * state, whose sound speed is constant. */
+    const float eta2 = c->eta2, hac0 = -c->alpha * c->c0, beta = c->beta;
+    const float rep_d = c->rep_d, rep_r02 = c->rep_r02;
+    const int fourtakas = c->fourtakas;
+    const float fh = fourtakas ? (float)(c->rho0m[c->material[i]] * c->inv_c02) : 0.0f;
+    const float fgx = fh * (float)c->g[0], fgy = fh * (float)c->g[1], fgz = fh * (float)c->g[2];
+    const v8f zero = {0};
+    v8f sx = zero, sy = zero, sz = zero, sr = zero, sd = zero;
+    for (int r = 0; r < nrange; ++r) {
+        for (size_t j = rg[2 * r]; j < rg[2 * r + 1]; j += 8) {
+            const v8f dx = v8_sep(xi, x0 + j), dy = v8_sep(yi, x1 + j);
+            const v8f dz = dim > 2 ? v8_sep(zi, x2 + j) : zero;
+            v8f r2 = dx * dx + dy * dy;
+            if (dim > 2) r2 += dz * dz;
+            /* i itself (r2 = 0) contributes nothing: every term has a factor x_ij or r2, and
+             * the repulsion needs r2 > 0. */
+            const v8f fw = v8_and(r2 < rad2, dnorm_h * dshape_over_q_v8(kt, v8_sqrt(r2) * inv_h));
+            const v8f vx = ui - v8_load(fk + FK_UG * fs + j),
+                      vy = vi - v8_load(fk + FK_VG * fs + j);
+            const v8f vz = dim > 2 ? wi - v8_load(fk + FK_WG * fs + j) : zero;
+            v8f vdx = vx * dx + vy * dy;
+            if (dim > 2) vdx += vz * dz;
+            v8f vdw =
+                (ui - v8_load(fk + FK_U * fs + j)) * dx + (vi - v8_load(fk + FK_V * fs + j)) * dy;
+            if (dim > 2) vdw += (wi - v8_load(fk + FK_W * fs + j)) * dz;
+            const v8f ieta = 1.0f / (r2 + eta2);
+            /* Monaghan's artificial viscosity, active for approaching pairs only. */
+            const v8f mu_ij = h0 * v8_and(vdx < 0.0f, vdx) * ieta;
+            const v8f drj = v8_load(fk + FK_DRHO * fs + j);
+            const v8f pi_ij = (hac0 + beta * mu_ij) * mu_ij * 2.0f / (rhoi2 + drj);
+            const v8f volj = v8_load(fk + FK_VOL * fs + j), isj = v8_load(fk + FK_FLUID * fs + j);
+            v8f fp =
+                -v8_load(fk + FK_MASS * fs + j) * (pri + v8_load(fk + FK_PRHO2 * fs + j) + pi_ij);
+            const v8f fwe = fw * r2 * ieta * volj;
+            const v8f muj = isj * v8_load(fk + FK_MU * fs + j) + (1.0f - isj) * mui;
+            const v8f fv = v8_load(fk + FK_VISC * fs + j) * (mui + muj) * inv_rhoi * fwe;
+            fp *= fw;
+            /* Wall repulsion (r2 < r0^2 lies within the support), rarely active: computed
+             * only for the vectors that need it. (r0/r)^2 is capped at 1e3 so that single
+             * precision cannot overflow. */
+            const v8i on = (isj == 0.0f) & (r2 < rep_r02) & (r2 > 0.0f);
+            if (v8_any(on)) {
+                const v8f inv_r2 = 1.0f / (r2 + v8_and(~on, zero + 1.0f));
+                v8f q2 = rep_r02 * inv_r2;
+                const v8i big = q2 >= 1e3f;
+                q2 = v8_and(~big, q2) + v8_and(big, zero + 1e3f);
+                const v8f q4 = q2 * q2;
+                fp += v8_and(on, rep_d * (q4 * q4 * q4 - q4) * inv_r2);
+            }
+            sx += fp * dx + fv * vx;
+            sy += fp * dy + fv * vy;
+            if (dim > 2) sz += fp * dz + fv * vz;
+            sr += volj * vdw * fw;
+            v8f dd = drj - dri;
+            if (fourtakas) dd += dim > 2 ? fgx * dx + fgy * dy + fgz * dz : fgx * dx + fgy * dy;
+            sd -= isj * dd * fwe;
+        }
+    }
+    const double ai[3] = {v8_sum(sx) + c->g[0], v8_sum(sy) + c->g[1], v8_sum(sz) + c->g[2]};
+    double a2 = 0, v2 = 0;
+    for (int d = 0; d < dim; ++d) {
+        c->a[d][i] = ai[d];
+        a2 += ai[d] * ai[d];
+        v2 += c->v[d][i] * c->v[d][i];
+    }
+    if (c->cont) c->drho[i] = c->rho[i] * v8_sum(sr) + c->diff * v8_sum(sd);
+    *amax2 = fmax(*amax2, a2);
+    *vmax2 = fmax(*vmax2, v2);
+}
+
+typedef void (*fast_driver)(const fast_ctx *c, size_t n, force_out *res);
+#define RY_FAST_DRIVER_(DIM, KT)                                                                   \
+    static void fast_##DIM##_##KT(const fast_ctx *c, size_t n, force_out *res) {                   \
+        double amax2 = 0, vmax2 = 0;                                                               \
+        _Pragma("omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)") for (      \
+            size_t i = 0; i < n; ++i) fast_particle(c, i, DIM, KT, &amax2, &vmax2);                \
+        res->amax2 = amax2;                                                                        \
+        res->vmax2 = vmax2;                                                                        \
+    }
+RY_FAST_DRIVER_(2, RY_KERNEL_WENDLAND_C2)
+RY_FAST_DRIVER_(3, RY_KERNEL_WENDLAND_C2)
+RY_FAST_DRIVER_(2, RY_KERNEL_WENDLAND_C4)
+RY_FAST_DRIVER_(3, RY_KERNEL_WENDLAND_C4)
+#undef RY_FAST_DRIVER_
+
+/* Whether the cell-range loop serves this case: Wendland kernels, no periodic directions, no
+ * variable h, energy equation, transport velocity or open boundaries (whose buffers change the
+ * particle set between searches). */
+static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why) {
+    const ry_kernel_type kt = sim->kernel.type;
+    *why = kt != RY_KERNEL_WENDLAND_C2 && kt != RY_KERNEL_WENDLAND_C4 ? "a Wendland kernel"
+           : is_periodic(sim)                                         ? "no periodic directions"
+           : w->variable_h || w->energy                               ? "no variable_h or energy"
+           : w->tvf                                                   ? "no transport_velocity"
+           : sim->nopen > 0                                           ? "no open boundaries"
+                                                                      : NULL;
+    return *why == NULL;
+}
+
+/* The candidates of each particle, from the positions and cells of the last search (the
+ * particles sorted by cell and, within each row of cells, by x): in each of the 3 (2D) or 9
+ * (3D) rows of cells around its cell, the particles within x +- reach, reach = support + skin.
+ * A pair within the support now was within reach then (no particle has moved more than half
+ * the skin since), so the ranges hold every neighbour, like the Verlet list. Each range's
+ * length is rounded up to a multiple of 8 (whole vectors) and ranges that then overlap are
+ * merged, so that no pair is counted twice; the particles this adds lie beyond reach, and the
+ * padding after the last particle lies 1e10 m away: the pair loop's range mask removes both. */
+static ry_status fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
+    const ry_cell_list *cl = &sim->cells;
+    const int dim = sim->dim, nrange = dim > 2 ? 9 : 3;
+    const size_t n = sim->ps.n;
+    if (w->rng_cap < n) {
+        uint32_t *r = realloc(w->rng, n * 2 * (size_t)nrange * sizeof *r);
+        RY_CHECK(err, r != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
+        w->rng = r;
+        w->rng_cap = n;
+        w->nrange = nrange;
+    }
+    const double *xr = sim->ps.f[sim->f_xref];
+    const double reach = sim->nl_radius * (1.0 + sim->nl_skin);
+    const size_t *start = cl->start;
+    const int nx = cl->ncell[0], ny = cl->ncell[1], nz = cl->ncell[2];
+    uint32_t *rng = w->rng;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        const size_t cell = cl->cell_of[i];
+        const int kx = (int)(cell % (size_t)nx), ky = (int)(cell / (size_t)nx % (size_t)ny);
+        const int kz = dim > 2 ? (int)(cell / ((size_t)nx * (size_t)ny)) : 0;
+        const int xa = kx > 0 ? kx - 1 : 0, xb = kx + 1 < nx ? kx + 1 : nx - 1;
+        const double lo = xr[i] - reach, hi = xr[i] + reach;
+        uint32_t *rg = rng + i * 2 * (size_t)nrange;
+        int nr = 0;
+        for (int z = kz - 1; z <= kz + 1; ++z) {
+            if (dim < 3 && z != kz) continue;
+            if (z < 0 || z >= nz) continue;
+            for (int y = ky - 1; y <= ky + 1; ++y) {
+                if (y < 0 || y >= ny) continue;
+                const size_t row = ((size_t)z * (size_t)ny + (size_t)y) * (size_t)nx;
+                size_t a = start[row + (size_t)xa], b = start[row + (size_t)xb + 1];
+                /* first with x >= lo, first with x > hi */
+                size_t l = a, u = b;
+                while (l < u) {
+                    const size_t m = l + (u - l) / 2;
+                    if (xr[m] < lo)
+                        l = m + 1;
+                    else
+                        u = m;
+                }
+                a = l;
+                u = b;
+                while (l < u) {
+                    const size_t m = l + (u - l) / 2;
+                    if (xr[m] <= hi)
+                        l = m + 1;
+                    else
+                        u = m;
+                }
+                b = l;
+                if (b <= a) continue;
+                if (nr > 0 && a < rg[2 * nr - 1]) {
+                    const size_t a0 = rg[2 * nr - 2];
+                    rg[2 * nr - 1] = (uint32_t)(a0 + ((b - a0 + 7) & ~(size_t)7));
+                } else {
+                    rg[2 * nr] = (uint32_t)a;
+                    rg[2 * nr + 1] = (uint32_t)(a + ((b - a + 7) & ~(size_t)7));
+                    ++nr;
+                }
+            }
+        }
+        for (; nr < nrange; ++nr) rg[2 * nr] = rg[2 * nr + 1] = 0;
+    }
+    w->rng_gen = sim->nl_generation;
+    return RY_OK;
+}
+
+/* W(q) / norm of the Wendland kernels (q < 2 is masked by the caller). */
+static inline v8f shape_v8(const ry_kernel_type kt, v8f q) {
+    const v8f s = 0.5f * q, t = 1.0f - s, t2 = t * t;
+    return kt == RY_KERNEL_WENDLAND_C2 ? t2 * t2 * (1.0f + 4.0f * s)
+                                       : t2 * t2 * t2 * (1.0f + s * (6.0f + s * (35.0f / 3.0f)));
+}
+
+/* The wall pass of the cell-range loop: the sums of wall particle i over the fluid among its
+ * candidates, in single precision from the records of prepare_pairs (whose wall entries are
+ * then rewritten). */
+static inline __attribute__((always_inline)) void
+wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
+                 const ry_kernel_type kt, wall_sums *s) {
+    const ry_kernel *k = &sim->kernel;
+    const int nrange = dim > 2 ? 9 : 3;
+    const uint32_t *restrict rg = w->rng + i * 2 * (size_t)nrange;
+    const size_t fs = w->fpack_stride;
+    const double *restrict x0 = w->fpack, *restrict x1 = x0 + fs, *restrict x2 = x0 + 2 * fs;
+    const float *restrict fk = (const float *)(x0 + 3 * fs);
+    const double xi = x0[i], yi = x1[i], zi = dim > 2 ? x2[i] : 0.0;
+    const float rad2 = (float)(k->radius * k->radius), inv_h = (float)k->inv_h;
+    const float gx = (float)sim->gravity[0], gy = (float)sim->gravity[1];
+    const float gz = dim > 2 ? (float)sim->gravity[2] : 0.0f;
+    const float rho_ref = (float)w->rho0m[0];
+    const v8f zero = {0};
+    v8f sw = zero, sp = zero, srx = zero, su = zero, sv = zero, sz = zero;
+    for (int r = 0; r < nrange; ++r) {
+        for (size_t j = rg[2 * r]; j < rg[2 * r + 1]; j += 8) {
+            const v8f dx = v8_sep(xi, x0 + j), dy = v8_sep(yi, x1 + j);
+            const v8f dz = dim > 2 ? v8_sep(zi, x2 + j) : zero;
+            v8f r2 = dx * dx + dy * dy, gr = gx * dx + gy * dy;
+            if (dim > 2) {
+                r2 += dz * dz;
+                gr += gz * dz;
+            }
+            const v8i on = (r2 < rad2) & (v8_load(fk + FK_FLUID * fs + j) != 0.0f);
+            const v8f wij = v8_and(on, shape_v8(kt, v8_sqrt(r2) * inv_h));
+            sw += wij;
+            sp += v8_load(fk + FK_P * fs + j) * wij;
+            srx += (rho_ref + v8_load(fk + FK_DRHO * fs + j)) * gr * wij;
+            su += v8_load(fk + FK_U * fs + j) * wij;
+            sv += v8_load(fk + FK_V * fs + j) * wij;
+            if (dim > 2) sz += v8_load(fk + FK_W * fs + j) * wij;
+        }
+    }
+    /* The kernel's normalisation cancels in every ratio but is kept for sw > 0 semantics. */
+    const double norm = k->norm;
+    s->sw = norm * v8_sum(sw);
+    s->sp = norm * v8_sum(sp);
+    s->srx = norm * v8_sum(srx);
+    s->sv[0] = norm * v8_sum(su);
+    s->sv[1] = norm * v8_sum(sv);
+    s->sv[2] = norm * v8_sum(sz);
+}
+
+#define RY_WALL_RANGES_(DIM, KT)                                                                   \
+    static void wall_ranges_##DIM##_##KT(ry_sim *sim, const wcsph *w) {                            \
+        const size_t n = sim->ps.n;                                                                \
+        _Pragma("omp parallel for schedule(static)") for (size_t i = 0; i < n; ++i) {              \
+            if (!wall_like(&sim->ps, i)) continue;                                                 \
+            wall_sums s;                                                                           \
+            wall_sums_ranges(sim, w, i, DIM, KT, &s);                                              \
+            wall_set(sim, w, i, &s);                                                               \
+            fpack_one(sim, w, i, pack_mu(sim, w, i), pack_visc(sim, w, i));                        \
+        }                                                                                          \
+    }
+RY_WALL_RANGES_(2, RY_KERNEL_WENDLAND_C2)
+RY_WALL_RANGES_(3, RY_KERNEL_WENDLAND_C2)
+RY_WALL_RANGES_(2, RY_KERNEL_WENDLAND_C4)
+RY_WALL_RANGES_(3, RY_KERNEL_WENDLAND_C4)
+#undef RY_WALL_RANGES_
+
+static void fast_wall_pass(ry_sim *sim, const wcsph *w) {
+    static void (*const drivers[2][2])(ry_sim *, const wcsph *) = {
+        {wall_ranges_2_RY_KERNEL_WENDLAND_C2, wall_ranges_3_RY_KERNEL_WENDLAND_C2},
+        {wall_ranges_2_RY_KERNEL_WENDLAND_C4, wall_ranges_3_RY_KERNEL_WENDLAND_C4}};
+    drivers[sim->kernel.type == RY_KERNEL_WENDLAND_C4][sim->dim - 2](sim, w);
+}
+
+static void fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
+    const ry_particles *ps = &sim->ps;
+    const ry_kernel *k = &sim->kernel;
+    fast_ctx c;
+    memset(&c, 0, sizeof c);
+    c.kind = ps->kind;
+    c.rng = w->rng;
+    c.fs = w->fpack_stride;
+    c.fk = (const float *)((const double *)w->fpack + 3 * c.fs);
+    for (int d = 0; d < 3; ++d) {
+        c.x[d] = (const double *)w->fpack + (size_t)d * c.fs;
+        c.v[d] = ps->f[RY_F_VX + (d < sim->dim ? d : 0)];
+        c.a[d] = ps->f[RY_F_AX + d];
+        c.g[d] = d < sim->dim ? sim->gravity[d] : 0.0;
+    }
+    c.rho = ps->f[RY_F_RHO];
+    c.drho = ps->f[RY_F_DRHO];
+    c.rho_ref = w->rho0m[0];
+    c.cont = w->density == DENS_CONTINUITY;
+    c.diff = w->diffusion != DIFF_NONE ? 2.0 * w->delta * k->h * w->c0 : 0.0;
+    c.fourtakas = w->diffusion == DIFF_FOURTAKAS;
+    c.rho0m = w->rho0m;
+    c.material = ps->material;
+    c.inv_c02 = 1.0 / (w->c0 * w->c0);
+    c.rad2 = (float)(sim->nl_radius * sim->nl_radius);
+    c.inv_h = (float)k->inv_h;
+    c.dnorm_h = (float)(k->dnorm / k->h);
+    c.h0 = (float)k->h;
+    c.eta2 = (float)(0.01 * k->h * k->h);
+    c.alpha = (float)w->alpha;
+    c.c0 = (float)w->c0;
+    c.beta = (float)w->beta;
+    c.rep_d = (float)w->rep_d;
+    c.rep_r02 = (float)(w->rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0);
+    static const fast_driver drivers[2][2] = {
+        {fast_2_RY_KERNEL_WENDLAND_C2, fast_3_RY_KERNEL_WENDLAND_C2},
+        {fast_2_RY_KERNEL_WENDLAND_C4, fast_3_RY_KERNEL_WENDLAND_C4}};
+    drivers[k->type == RY_KERNEL_WENDLAND_C4][sim->dim - 2](&c, ps->n, res);
+}
+
 /* Transport-velocity formulation (Adami, Hu & Adams 2013, eq. 8 and 13): pressure with the
  * density-weighted inter-particle average, the extra stress A = rho v (v~ - v), the viscous
  * term with the inter-particle averaged viscosity, and the background-pressure acceleration
@@ -823,6 +1318,10 @@ static ry_status fluid_forces(ry_sim *sim, wcsph *w, force_out *res, ry_error *e
         tvf_drivers[sim->kernel.type][sim->dim - 2][is_periodic(sim)](sim, w, res);
         return RY_OK;
     }
+    if (w->fast) {
+        fast_forces(sim, w, res);
+        return RY_OK;
+    }
     pass_ctx c;
     pass_ctx_init(&c, sim, w);
     const size_t cap = c.len * (size_t)omp_get_max_threads();
@@ -838,6 +1337,14 @@ static ry_status fluid_forces(ry_sim *sim, wcsph *w, force_out *res, ry_error *e
     return RY_OK;
 }
 
+/* The scheme's buffers, for sim->scheme_bytes. */
+static size_t wcsph_bytes(const wcsph *w) {
+    const size_t nr = w->rng_cap * 2 * (size_t)w->nrange * sizeof(uint32_t);
+    return w->pack_cap * PK_STRIDE(3) * sizeof(double) +
+           w->scratch_cap * (SC_COUNT + 1) * sizeof(double) +
+           w->fpack_cap * (3 * sizeof(double) + FK_COUNT * sizeof(float)) + nr;
+}
+
 /* Evaluates all rates at the current (predicted) state. */
 static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
@@ -847,6 +1354,7 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     }
     w->hmax = hmax;
     RY_TRY(ry_sim_neighbors(sim, sim->kernel.kappa * hmax, err));
+    if (w->fast && w->rng_gen != sim->nl_generation) RY_TRY(fast_ranges(sim, w, err));
     if (w->density == DENS_SUMMATION) density_summation(sim, w);
     const size_t n = ps->n;
     double *p = ps->f[RY_F_P];
@@ -854,10 +1362,17 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
         if (ps->kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, ps->material[i], rho[i], e[i]);
-    wall_pass(sim, w);
-    RY_TRY(prepare_pairs(sim, w, err));
+    if (w->fast) {
+        /* The wall pass reads the fluid's records and rewrites the walls'. */
+        RY_TRY(prepare_pairs(sim, w, err));
+        fast_wall_pass(sim, w);
+    } else {
+        wall_pass(sim, w);
+        RY_TRY(prepare_pairs(sim, w, err));
+    }
     force_out res;
     RY_TRY(fluid_forces(sim, w, &res, err));
+    sim->scheme_bytes = wcsph_bytes(w);
     w->amax = sqrt(res.amax2);
     w->vmax = sqrt(res.vmax2);
     w->have_forces = 1;
