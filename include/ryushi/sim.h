@@ -139,9 +139,10 @@ struct ry_sim {
     ry_cell_list cells;
     ry_nlist nl;
     double nl_radius;   /* support radius the list serves */
-    double nl_skin;     /* Verlet skin, a fraction of the radius: the list holds the pairs
-                           within radius (1 + skin) and is rebuilt when a particle has moved
-                           more than half the skin since the last build */
+    double nl_skin;     /* Verlet skin (neighbors.skin; a scheme's init may preset its
+                           default), a fraction of the radius: the list holds the pairs within
+                           radius (1 + skin) and is rebuilt when a particle has moved more
+                           than half the skin since the last build */
     int reorder_every;  /* reorder particles along cells every so many builds (0: never) */
     int sort_always;    /* set by a scheme: reorder at every build (by cell, and by x within
                            each cell), so that the particles of each cell are consecutive */

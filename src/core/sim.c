@@ -240,9 +240,7 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(ry_case_double(c, "time.cfl", &cfl, 1e-3, one, &sim->cfl, err));
     RY_TRY(ry_case_double(c, "time.dt_max", &dtmax, 0.0, INFINITY, &sim->dt_max, err));
     RY_TRY(ry_case_int(c, "time.max_steps", &maxsteps, 1, 1000000000000L, &sim->max_steps, err));
-    double skin = 0.15;
     RY_TRY(ry_case_int(c, "neighbors.reorder_every", &reorder, 0, 1000000, &reorder, err));
-    RY_TRY(ry_case_double(c, "neighbors.skin", &skin, 0.0, 1.0, &sim->nl_skin, err));
     sim->reorder_every = (int)reorder;
     static const char *const xr[3] = {"xref_x", "xref_y", "xref_z"};
     for (int d = 0; d < 3; ++d) {
@@ -265,6 +263,9 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(read_probes(sim, c, err));
     RY_TRY(ry_profiles_setup(sim, c, err));
     RY_TRY(read_scheme(sim, c, err));
+    /* The Verlet skin: the scheme may have preset its own default. */
+    double skin = sim->nl_skin > 0 ? sim->nl_skin : 0.15;
+    RY_TRY(ry_case_double(c, "neighbors.skin", &skin, 0.0, 1.0, &sim->nl_skin, err));
     RY_TRY(read_guard(sim, c, err));
     RY_TRY(read_checkpoint(sim, c, err));
     ry_case_touch(c, "description");
