@@ -49,8 +49,15 @@ double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
 
 /* Adds the surface-tension acceleration to a[d][i] of every fluid particle. The neighbour list
  * of sim must hold all pairs within st->re. CSF needs surface[i] (non-zero for the particles
- * on the free surface; the force acts on them only); the potential model ignores it. */
-void ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
-                      double *const a[3]);
+ * on the free surface; the force acts on them only, with the curvature of Nomura et al.
+ * averaged over the surface particles within re); the potential model ignores it. */
+ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
+                           double *const a[3], ry_error *err);
+
+/* CSF curvature (1/R in 2D, 2/R in 3D for a sphere) of every surface particle (surface[i] non-zero;
+ * 0 elsewhere), averaged over the surface particles within re. kappa holds 2 n doubles (the
+ * second half is work space). */
+void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
+                     double *kappa);
 
 #endif

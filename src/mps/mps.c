@@ -56,6 +56,8 @@ typedef struct mps {
     int32_t *unk; /* unknown index per particle, -1 if none */
     uint8_t *role;
     double *b, *xs;
+    double *pd;       /* Dirichlet pressure of the surface particles (2 n: work) */
+    int csf_pressure; /* CSF as the Laplace jump on the surface particles */
     size_t cap;
     int last_iters, last_viters;
     long total_iters, steps;
@@ -121,6 +123,11 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
         RY_TRY(ry_case_double(c, "surface_tension.sigma", NULL, 0.0, INFINITY, &sigma, err));
         RY_TRY(ry_case_double(c, "surface_tension.radius", &rst, 1.5, 6.0, &rst, err));
     }
+    if (model == RY_ST_CSF) {
+        static const char *const forms[] = {"force", "pressure", NULL};
+        RY_TRY(
+            ry_case_choice(c, "surface_tension.csf_form", "force", forms, &M->csf_pressure, err));
+    }
     M->re_g *= l0;
     M->re_l *= l0;
     rst *= l0;
@@ -151,6 +158,7 @@ static void mps_free(void *state) {
     free(M->role);
     free(M->b);
     free(M->xs);
+    free(M->pd);
     free(M);
 }
 
@@ -165,7 +173,9 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (b) M->b = b;
     double *x = realloc(M->xs, 3 * c * sizeof *x);
     if (x) M->xs = x;
-    RY_CHECK(err, u && r && b && x, RY_ERR_NOMEM, "out of memory (MPS work arrays)");
+    double *pd = realloc(M->pd, 2 * c * sizeof *pd);
+    if (pd) M->pd = pd;
+    RY_CHECK(err, u && r && b && x && pd, RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
 }
@@ -424,12 +434,24 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     RY_TRY(assemble(sim, M, nunk, couple_pressure, dt, M->alpha * rho_max / (dt * dt), err));
     const double *nd = ps->f[M->f_nd];
     const double g = M->gamma;
+    /* Dirichlet values: 0, or the Laplace jump sigma kappa with CSF in pressure form. */
+    for (size_t i = 0; i < n; ++i) M->pd[i] = 0;
+    if (M->csf_pressure) ry_st_curvature(&M->st, sim, ps->f[M->f_surf], M->pd);
+    for (size_t i = 0; i < n; ++i) M->pd[i] *= M->csf_pressure ? M->st.sigma : 0.0;
+    const double rel = M->re_l, rel2 = rel * rel, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;
         const double rho = sim->mat[ps->material[i]].density;
         double b = g * rho / (dt * dt) * (M->dilate ? nd[i] - 1.0 : fmax(nd[i] - 1.0, 0.0));
         if (g < 1.0) b -= (1.0 - g) * rho / dt * divergence(sim, M, i);
+        for (size_t q = sim->nl.offset[i]; M->csf_pressure && q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            const double r2 = sep(sim, i, j, dx);
+            if (M->role[j] == ROLE_SURFACE && r2 < rel2)
+                b += cl * ry_mps_weight_tamai(sqrt(r2), rel) * M->pd[j];
+        }
         M->b[M->unk[i]] = b;
         M->xs[M->unk[i]] = ps->f[RY_F_P][i];
     }
@@ -440,7 +462,7 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     M->total_iters += it;
     double *p = ps->f[RY_F_P];
     for (size_t i = 0; i < n; ++i) {
-        double v = M->unk[i] >= 0 ? M->xs[M->unk[i]] : 0.0;
+        double v = M->unk[i] >= 0 ? M->xs[M->unk[i]] : M->role[i] == ROLE_SURFACE ? M->pd[i] : 0.0;
         if (M->clamp && v < 0) v = 0;
         p[i] = v;
     }
@@ -573,7 +595,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
     for (size_t i = 0; i < n; ++i)
         for (int d = 0; d < dim; ++d) a[d][i] = ps->kind[i] == RY_KIND_FLUID ? sim->gravity[d] : 0;
-    ry_st_accelerate(&M->st, sim, ps->f[M->f_surf], a);
+    if (!M->csf_pressure) RY_TRY(ry_st_accelerate(&M->st, sim, ps->f[M->f_surf], a, err));
     if (M->visc == VISC_EXPLICIT) viscous_explicit(sim, M);
     if (M->visc == VISC_IMPLICIT) {
         RY_TRY(viscous_implicit(sim, M, dt, err));
@@ -656,16 +678,56 @@ long ry_mps_total_iterations(const ry_sim *sim) {
 }
 
 /* Probes. */
-static ry_status probe_width_x(const ry_sim *sim, double *v, ry_error *err) {
-    (void)err;
+
+/* Centroid of the fluid particles; returns their number. */
+static size_t fluid_centroid(const ry_sim *sim, double *c) {
     const ry_particles *ps = &sim->ps;
-    double lo = INFINITY, hi = -INFINITY;
+    size_t nf = 0;
+    c[0] = c[1] = c[2] = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
-        lo = fmin(lo, ps->f[RY_F_X][i]);
-        hi = fmax(hi, ps->f[RY_F_X][i]);
+        for (int d = 0; d < sim->dim; ++d) c[d] += ps->f[RY_F_X + d][i];
+        ++nf;
     }
-    *v = hi >= lo ? hi - lo + sim->dx : NAN;
+    for (int d = 0; d < sim->dim && nf; ++d) c[d] /= (double)nf;
+    return nf;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Width of a drop along x through its centroid: the fluid particles within 1.5 spacings of the
+ * x axis through the centroid, sorted by x; from the one nearest the centroid the body extends
+ * while neighbours are at most 3 spacings apart (particles thrown off do not count); the width
+ * is the extent of that body plus one spacing. */
+static ry_status probe_width_x(const ry_sim *sim, double *v, ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    double c[3];
+    *v = NAN;
+    if (fluid_centroid(sim, c) == 0) return RY_OK;
+    double *xs = malloc((ps->n + 1) * sizeof *xs);
+    RY_CHECK(err, xs != NULL, RY_ERR_NOMEM, "out of memory (width_x)");
+    size_t k = 0;
+    const double band = 1.5 * sim->dx;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        int in = 1;
+        for (int d = 1; d < sim->dim; ++d) in &= fabs(ps->f[RY_F_X + d][i] - c[d]) < band;
+        if (in) xs[k++] = ps->f[RY_F_X][i];
+    }
+    if (k > 0) {
+        qsort(xs, k, sizeof *xs, cmp_double);
+        size_t m = 0;
+        for (size_t q = 1; q < k; ++q)
+            if (fabs(xs[q] - c[0]) < fabs(xs[m] - c[0])) m = q;
+        size_t lo = m, hi = m;
+        while (lo > 0 && xs[lo] - xs[lo - 1] <= 3 * sim->dx) --lo;
+        while (hi + 1 < k && xs[hi + 1] - xs[hi] <= 3 * sim->dx) ++hi;
+        *v = xs[hi] - xs[lo] + sim->dx;
+    }
+    free(xs);
     return RY_OK;
 }
 
@@ -674,18 +736,12 @@ static ry_status probe_width_x(const ry_sim *sim, double *v, ry_error *err) {
 static ry_status probe_drop_pressure(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
     const ry_particles *ps = &sim->ps;
-    double c[3] = {0, 0, 0};
-    size_t nf = 0;
-    for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
-        for (int d = 0; d < sim->dim; ++d) c[d] += ps->f[RY_F_X + d][i];
-        ++nf;
-    }
+    double c[3];
+    const size_t nf = fluid_centroid(sim, c);
     if (nf == 0) {
         *v = NAN;
         return RY_OK;
     }
-    for (int d = 0; d < sim->dim; ++d) c[d] /= (double)nf;
     const double vol = (double)nf * pow(sim->dx, sim->dim);
     const double R = sim->dim == 2 ? sqrt(vol / RY_PI) : cbrt(3 * vol / (4 * RY_PI));
     double s = 0;
@@ -713,7 +769,10 @@ static ry_status probe_ppe_iterations(const ry_sim *sim, double *v, ry_error *er
 }
 
 const ry_probe ry_probe_width_x = {
-    "width_x", "extent of the fluid along x plus one spacing [m] (droplet width)", probe_width_x};
+    "width_x",
+    "drop width along x through the fluid's centroid [m] (the body within 1.5 spacings of the "
+    "axis, particles thrown off left out, plus one spacing)",
+    probe_width_x};
 const ry_probe ry_probe_drop_pressure = {
     "drop_pressure",
     "mean pressure of the fluid within half the equivalent radius of its centroid [Pa]",

@@ -1,6 +1,7 @@
 /* Surface tension for particle methods: CSF after Nomura et al. (2001) and the potential model
  * of Kondo et al. (2007), seed 003 eq. 9-12. See include/ryushi/surface_tension.h. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "ryushi/surface_tension.h"
 
@@ -85,49 +86,105 @@ static double csf_curvature(const ry_surface_tension *st, double count) {
     return 4.0 * (1.0 - 2.0 * f) / st->re;
 }
 
-void ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
-                      double *const a[3]) {
-    if (st->model == RY_ST_NONE || st->sigma == 0.0) return;
+/* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai
+ * weight) or the potential force sum_j f(r) (x_j - x_i)/r; *count receives the neighbours. */
+static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
+                    double *count) {
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim, csf = st->model == RY_ST_CSF;
+    const double re = st->re, re2 = re * re;
+    s[0] = s[1] = s[2] = 0;
+    *count = 0;
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const uint32_t j = sim->nl.j[q];
+        if (ps->kind[j] != RY_KIND_FLUID) continue;
+        double dx[3] = {0, 0, 0}, r2 = 0;
+        for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+        ry_box_min_image(&sim->box, dx);
+        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        if (r2 >= re2 || r2 <= 0) continue;
+        const double r = sqrt(r2);
+        const double f = csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re);
+        *count += 1.0;
+        for (int d = 0; d < dim; ++d) s[d] += f * dx[d] / r;
+    }
+}
+
+/* Curvature of every surface particle (0 elsewhere): Nomura's estimate, averaged over the
+ * surface particles within re (weights w, the particle itself with weight 1) to damp the noise
+ * of the count. */
+void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
+                     double *kappa) {
     const ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
-    const double re = st->re, re2 = re * re, l0 = st->l0, C = st->C;
-    const double area = dim > 2 ? l0 * l0 : l0;
-    const double *m = ps->f[RY_F_MASS];
-    const int csf = st->model == RY_ST_CSF;
+    double *raw = kappa + n; /* second half of the caller's 2 n */
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
-        if (csf && !(surface && surface[i] != 0.0)) continue;
-        double s[3] = {0, 0, 0}, count = 0;
+        raw[i] = 0;
+        if (ps->kind[i] != RY_KIND_FLUID || !(surface && surface[i] != 0.0)) continue;
+        double s[3], count;
+        st_sums(st, sim, i, s, &count);
+        /* A particle that sees much more than half a neighbourhood lies below the surface
+         * layer (flagged by a passing dip of its number density): no estimate. */
+        raw[i] =
+            count / st->count0 - (st->flat_fraction - 0.5) > 0.6 ? NAN : csf_curvature(st, count);
+    }
+    const double re2 = st->re * st->re;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        kappa[i] = 0;
+        if (ps->kind[i] != RY_KIND_FLUID || !(surface && surface[i] != 0.0)) continue;
+        double ks = isnan(raw[i]) ? 0.0 : raw[i], ws = isnan(raw[i]) ? 0.0 : 1.0;
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
             const uint32_t j = sim->nl.j[q];
-            if (ps->kind[j] != RY_KIND_FLUID) continue;
+            if (ps->kind[j] != RY_KIND_FLUID || !(surface[j] != 0.0) || isnan(raw[j])) continue;
             double dx[3] = {0, 0, 0}, r2 = 0;
             for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
             ry_box_min_image(&sim->box, dx);
             for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
-            if (r2 >= re2 || r2 <= 0) continue;
-            const double r = sqrt(r2);
-            if (csf) { /* count, and the inward direction (towards the fluid's mass) */
-                count += 1.0;
-                const double w = ry_mps_weight_tamai(r, re);
-                for (int d = 0; d < dim; ++d) s[d] += w * dx[d] / r;
-            } else {
-                const double f = ry_st_potential_f(r, l0, re);
-                for (int d = 0; d < dim; ++d) s[d] += f * dx[d] / r;
-            }
+            if (r2 >= re2) continue;
+            const double w = ry_mps_weight_tamai(sqrt(r2), st->re);
+            ks += w * raw[j];
+            ws += w;
         }
-        if (csf) {
-            double norm = 0;
-            for (int d = 0; d < dim; ++d) norm += s[d] * s[d];
-            if (norm <= 0) continue;
-            norm = sqrt(norm);
-            const double k = csf_curvature(st, count);
-            const double fac = st->sigma * k * area / (m[i] * norm);
-            for (int d = 0; d < dim; ++d) a[d][i] += fac * s[d];
-        } else {
-            for (int d = 0; d < dim; ++d) a[d][i] += C * s[d] / m[i];
-        }
+        kappa[i] = ws > 0 ? ks / ws : 0.0;
     }
+}
+
+ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
+                           double *const a[3], ry_error *err) {
+    if (st->model == RY_ST_NONE || st->sigma == 0.0) return RY_OK;
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    const double l0 = st->l0, area = dim > 2 ? l0 * l0 : l0;
+    const double *m = ps->f[RY_F_MASS];
+    if (st->model == RY_ST_POTENTIAL) {
+#pragma omp parallel for schedule(dynamic, 64)
+        for (size_t i = 0; i < n; ++i) {
+            if (ps->kind[i] != RY_KIND_FLUID) continue;
+            double s[3], count;
+            st_sums(st, sim, i, s, &count);
+            for (int d = 0; d < dim; ++d) a[d][i] += st->C * s[d] / m[i];
+        }
+        return RY_OK;
+    }
+    double *kappa = malloc(2 * n * sizeof *kappa);
+    RY_CHECK(err, kappa != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
+    ry_st_curvature(st, sim, surface, kappa);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || !(surface && surface[i] != 0.0)) continue;
+        double s[3], count;
+        st_sums(st, sim, i, s, &count);
+        double norm = 0;
+        for (int d = 0; d < dim; ++d) norm += s[d] * s[d];
+        if (norm <= 0) continue;
+        norm = sqrt(norm);
+        const double fac = st->sigma * kappa[i] * area / (m[i] * norm);
+        for (int d = 0; d < dim; ++d) a[d][i] += fac * s[d];
+    }
+    free(kappa);
+    return RY_OK;
 }
