@@ -253,7 +253,8 @@ static void viscous_explicit(ry_sim *sim, const mps *M) {
 
 /* Assembles the rows of the unknowns (unk[i] >= 0) from the Laplacian pairs: for each pair
  * (i, j) within re_l that `couples` accepts, coefficient c w_ij on the diagonal and -c w_ij
- * off it when j is an unknown too; diag_extra is added to every diagonal. coef(i, j) scales
+ * off it when j is an unknown too (pairs beyond re_l make no entry); diag_extra is added to
+ * every diagonal. coef(i, j) scales
  * c w_ij (1 for the pressure, dt nu_ij for the viscosity). */
 typedef int (*couple_fn)(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
                          double dt);
@@ -262,26 +263,22 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, d
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const double re = M->re_l, re2 = re * re, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
-    /* Row lengths (diagonal included), then the rows. */
-    size_t nz = 0;
-    for (size_t i = 0; i < n; ++i) {
-        if (M->unk[i] < 0) continue;
-        nz += 1;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q)
-            if (M->unk[sim->nl.j[q]] >= 0) nz += 1;
-    }
-    RY_TRY(ry_csr_reserve(&M->A, nunk, nz, err));
+    /* Row lengths (diagonal included) in parallel, their prefix sums, then the rows. */
+    RY_TRY(ry_csr_reserve(&M->A, nunk, 0, err));
     ry_csr *A = &M->A;
-    size_t pos = 0;
+    A->row[0] = 0;
+#pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;
-        const size_t k = (size_t)M->unk[i];
-        A->row[k] = pos;
-        pos += 1;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q)
-            if (M->unk[sim->nl.j[q]] >= 0) pos += 1;
+        size_t len = 1;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            double dx[3];
+            if (M->unk[sim->nl.j[q]] >= 0 && sep(sim, i, sim->nl.j[q], dx) < re2) len += 1;
+        }
+        A->row[(size_t)M->unk[i] + 1] = len;
     }
-    A->row[nunk] = pos;
+    for (size_t k = 0; k < nunk; ++k) A->row[k + 1] += A->row[k];
+    RY_TRY(ry_csr_reserve(&M->A, nunk, A->row[nunk], err));
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;
@@ -293,7 +290,7 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, d
             const uint32_t j = sim->nl.j[q];
             double dx[3], coef = 0;
             const double r2 = sep(sim, i, j, dx);
-            const int uj = M->unk[j] >= 0;
+            const int uj = M->unk[j] >= 0 && r2 < re2;
             double a = 0;
             if (r2 < re2 && couples(sim, M, i, j, &coef, dt))
                 a = cl * coef * ry_mps_weight_tamai(sqrt(r2), re);
@@ -590,7 +587,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
     size_t n = ps->n;
-    number_density(sim, M);
+    if (M->st.model == RY_ST_CSF) number_density(sim, M); /* surface particles at x^n */
     double *a[3];
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
     for (size_t i = 0; i < n; ++i)
