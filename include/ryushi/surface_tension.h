@@ -23,10 +23,10 @@ typedef struct ry_surface_tension {
     /* potential model: C of eq. 11 (negative: the sum of the potential over the pairs across
      * the split is negative) [N/m^2 in 3D] */
     double C;
-    /* CSF: particles of a full lattice neighbourhood within re (self excluded), and the fraction
-     * of them a particle on a flat surface sees (a little over one half: the surface lies half a
-     * spacing above the centres of the top layer) */
-    double count0, flat_fraction;
+    /* CSF: sum over a column across a flat surface of the inward weight sums (the discrete
+     * delta function's normalisation) [m] */
+    double delta_sum;
+    double g_top; /* that sum for the top layer alone */
 } ry_surface_tension;
 
 /* Names used in case files: "none", "csf", "potential" (NULL-terminated, indexed by model). */
@@ -54,9 +54,9 @@ double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
 ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
                            double *const a[3], ry_error *err);
 
-/* CSF curvature (1/R in 2D, 2/R in 3D for a sphere) of every surface particle (surface[i] non-zero;
- * 0 elsewhere), averaged over the surface particles within re. kappa holds 2 n doubles (the
- * second half is work space). */
+/* CSF curvature (1/R in 2D, 2/R in 3D for a sphere) of the fluid particles near the surface
+ * (0 elsewhere): the corrected divergence of the colour function's outward normal. kappa holds
+ * 5 n doubles (the rest is work space); surface is not used (kept for other estimates). */
 void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
                      double *kappa);
 

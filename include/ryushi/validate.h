@@ -57,8 +57,9 @@ ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_
                                 double *rms_v, ry_error *err);
 
 /* Oscillating drop as the seed measures it (seed 003, section 3): from a column (the width),
- * smoothed by a moving average over 5 rows, the half period is the time of the largest width
- * and the period the time of the least width after it, searched up to 2.5 half periods (NAN
+ * smoothed by a moving average over 5 rows, the half period is the time of the first maximum
+ * of the width (the first local maximum above the middle between the initial and the largest
+ * width) and the period the time of the least width after it, searched up to 2.5 half periods (NAN
  * when that minimum lies at the end of the search, i.e. the record is too short). */
 typedef struct ry_drop_periods {
     double half, period;                 /* [s] */

@@ -220,9 +220,16 @@ ry_drop_periods ry_drop_periods_measure(const ry_table *series, const char *name
             }
         w[r] = r == 0 || k == 0 ? ry_table_at(series, r, cw) : s / k;
     }
+    /* The first maximum: the first row above the middle between the start and the largest
+     * width, then on while the width grows. */
     size_t imax = 1;
     for (size_t r = 1; r < n; ++r)
         if (w[r] > w[imax]) imax = r;
+    const double mid = 0.5 * (w[0] + w[imax]);
+    size_t r0 = 1;
+    while (r0 < imax && w[r0] <= mid) ++r0;
+    while (r0 + 1 < n && w[r0 + 1] >= w[r0]) ++r0;
+    imax = r0;
     const double th = ry_table_at(series, imax, ct);
     size_t imin = imax;
     for (size_t r = imax + 1; r < n && ry_table_at(series, r, ct) <= 2.5 * th; ++r)

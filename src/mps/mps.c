@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mps/small.h"
 #include "mps/sparse.h"
 #include "ryushi/mps.h"
 #include "ryushi/surface_tension.h"
@@ -173,7 +174,7 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (b) M->b = b;
     double *x = realloc(M->xs, 3 * c * sizeof *x);
     if (x) M->xs = x;
-    double *pd = realloc(M->pd, 2 * c * sizeof *pd);
+    double *pd = realloc(M->pd, 5 * c * sizeof *pd);
     if (pd) M->pd = pd;
     RY_CHECK(err, u && r && b && x && pd, RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
@@ -467,32 +468,6 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     return RY_OK;
 }
 
-/* Solves the symmetric d x d system m x = g (d = 2, 3); 0 when m is nearly singular. */
-static int solve_small(int dim, double m[3][3], const double *g, double *x) {
-    const double scale = m[0][0] + m[1][1] + (dim > 2 ? m[2][2] : 0.0);
-    if (!(scale > 0)) return 0;
-    if (dim == 2) {
-        const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-        if (fabs(det) < 1e-3 * scale * scale / 4) return 0;
-        x[0] = (m[1][1] * g[0] - m[0][1] * g[1]) / det;
-        x[1] = (m[0][0] * g[1] - m[1][0] * g[0]) / det;
-        return 1;
-    }
-    const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
-    const double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
-    const double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
-    const double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
-    if (fabs(det) < 1e-3 * scale * scale * scale / 27) return 0;
-    const double c11 = m[0][0] * m[2][2] - m[0][2] * m[2][0];
-    const double c12 = m[0][1] * m[2][0] - m[0][0] * m[2][1];
-    const double c22 = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    /* m symmetric: the inverse is the cofactor matrix over det. */
-    x[0] = (c00 * g[0] + c01 * g[1] + c02 * g[2]) / det;
-    x[1] = (c01 * g[0] + c11 * g[1] + c12 * g[2]) / det;
-    x[2] = (c02 * g[0] + c12 * g[1] + c22 * g[2]) / det;
-    return 1;
-}
-
 /* Pressure gradient (eq. 5) and the correction u' = -dt/rho grad p at x*: v = u* + u',
  * x = x* + dt u'. Neighbours: fluid and wall particles (dummies carry no pressure). */
 static void correct(ry_sim *sim, mps *M, double dt) {
@@ -524,7 +499,7 @@ static void correct(ry_sim *sim, mps *M, double dt) {
                 for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
             }
         }
-        if (M->grad == GRAD_STANDARD || !solve_small(dim, m, g, x))
+        if (M->grad == GRAD_STANDARD || !ry_solve_small(dim, m, g, x))
             for (int a = 0; a < dim; ++a) x[a] = dim * g[a] / M->n0g;
         for (int a = 0; a < dim; ++a) gx[dim * i + a] = x[a];
     }

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "mps/small.h"
 #include "ryushi/surface_tension.h"
 
 const char *const ry_st_model_names[] = {"none", "csf", "potential", NULL};
@@ -42,21 +43,28 @@ double ry_st_potential_coefficient(int dim, double l0, double re, double sigma) 
     return 2.0 * sigma * area / ry_st_potential_pair_sum(dim, l0, re);
 }
 
-/* CSF lattice constants: neighbours within re (self excluded), and the fraction of them at or
- * below the plane of a particle on a flat surface. */
-static void csf_lattice(int dim, double l0, double re, double *count0, double *flat) {
+/* CSF: the sum over one column of a flat half-space lattice (depths k = 1, 2, ... spacings
+ * below the top layer) of the inward sum |sum_j w(r) x_ij / r| (its normal part): it spreads
+ * the jump sigma kappa over the layers under the surface (a discrete delta function). The
+ * surface layer itself is left out: its pressure is fixed (p = 0), so a force on it would not
+ * reach the pressure inside. */
+static double csf_delta_sum(int dim, double l0, double re, double *g_top) {
     const int K = lattice_extent(l0, re);
-    long all = 0, below = 0;
-    for (int s = -K; s <= K; ++s)
-        for (int u = -K; u <= K; ++u)
-            for (int v = (dim > 2 ? -K : 0); v <= (dim > 2 ? K : 0); ++v) {
-                if (s == 0 && u == 0 && v == 0) continue;
-                if (l0 * sqrt((double)(s * s + u * u + v * v)) >= re) continue;
-                ++all;
-                if (s <= 0) ++below;
-            }
-    *count0 = (double)all;
-    *flat = (double)below / (double)all;
+    double S = 0;
+    for (int k = 0; k <= K; ++k) { /* the particle's depth */
+        double g = 0;
+        for (int s = -K; s <= K; ++s) /* s: the neighbour's depth less the particle's */
+            for (int u = -K; u <= K; ++u)
+                for (int v = (dim > 2 ? -K : 0); v <= (dim > 2 ? K : 0); ++v) {
+                    if ((s == 0 && u == 0 && v == 0) || k + s < 0) continue;
+                    const double r = l0 * sqrt((double)(s * s + u * u + v * v));
+                    if (r >= re) continue;
+                    g += ry_mps_weight_tamai(r, re) * s * l0 / r;
+                }
+        S += g;
+        if (k == 0) *g_top = g;
+    }
+    return S;
 }
 
 ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, double re,
@@ -70,20 +78,8 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     st->l0 = l0;
     st->re = re;
     st->C = ry_st_potential_coefficient(dim, l0, re, sigma);
-    csf_lattice(dim, l0, re, &st->count0, &st->flat_fraction);
+    st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
     return RY_OK;
-}
-
-/* Curvature of the surface through a particle after Nomura et al. (2001): the fluid seen
- * within re fills a sector (2D) or cone (3D) of half-angle theta about the inward normal; a
- * surface of radius R through the particle cuts the circle of radius re at cos(theta) =
- * re / (2R). The fraction seen is shifted by that of a flat surface less one half (the
- * particle's centre lies half a spacing inside the surface). kappa = 1/R (2D), 2/R (3D). */
-static double csf_curvature(const ry_surface_tension *st, double count) {
-    double f = count / st->count0 - (st->flat_fraction - 0.5);
-    f = fmin(fmax(f, 0.0), 1.0);
-    if (st->dim == 2) return 2.0 * cos(RY_PI * f) / st->re;
-    return 4.0 * (1.0 - 2.0 * f) / st->re;
 }
 
 /* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai
@@ -105,40 +101,79 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
         if (r2 >= re2 || r2 <= 0) continue;
         const double r = sqrt(r2);
         const double f = csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re);
-        *count += 1.0;
+        *count += csf ? f : 1.0;
         for (int d = 0; d < dim; ++d) s[d] += f * dx[d] / r;
     }
 }
 
-/* Curvature of every surface particle (0 elsewhere): Nomura's estimate, averaged over the
- * surface particles within re (weights w, the particle itself with weight 1) to damp the noise
- * of the count. */
+/* CSF curvature from the colour function (c = 1 on the fluid): the outward normal
+ * n = -g/|g|, g_i = sum_j w x_ij / r (the colour gradient up to a factor), where |g| exceeds a
+ * tenth of its value on a flat surface; kappa = div n by the corrected (moment-matrix) divergence
+ * over the neighbours that have a normal, exact for a linear normal field however one-sided the
+ * neighbourhood; limited to radii of two spacings and up, then averaged over the neighbours
+ * that have a normal. kappa holds 5 n doubles: kappa, then work space. */
 void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
                      double *kappa) {
+    (void)surface;
     const ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
-    double *raw = kappa + n; /* second half of the caller's 2 n */
+    double *nrm = kappa + n;     /* 3 per particle; NAN in [0] where there is none */
+    double *raw = kappa + 4 * n; /* the curvature before averaging */
+    const double gmin = 0.1 * st->g_top;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        raw[i] = 0;
-        if (ps->kind[i] != RY_KIND_FLUID || !(surface && surface[i] != 0.0)) continue;
-        double s[3], count;
-        st_sums(st, sim, i, s, &count);
-        /* A particle that sees much more than half a neighbourhood lies below the surface
-         * layer (flagged by a passing dip of its number density): no estimate. */
-        raw[i] =
-            count / st->count0 - (st->flat_fraction - 0.5) > 0.6 ? NAN : csf_curvature(st, count);
+        nrm[3 * i] = NAN;
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double g[3], count, gn = 0;
+        st_sums(st, sim, i, g, &count);
+        for (int d = 0; d < dim; ++d) gn += g[d] * g[d];
+        gn = sqrt(gn);
+        if (gn <= gmin) continue;
+        for (int d = 0; d < 3; ++d) nrm[3 * i + d] = d < dim ? -g[d] / gn : 0.0;
     }
     const double re2 = st->re * st->re;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        kappa[i] = 0;
-        if (ps->kind[i] != RY_KIND_FLUID || !(surface && surface[i] != 0.0)) continue;
-        double ks = isnan(raw[i]) ? 0.0 : raw[i], ws = isnan(raw[i]) ? 0.0 : 1.0;
+        raw[i] = 0;
+        if (isnan(nrm[3 * i])) continue;
+        double m[3][3] = {{0}}, h[3][3] = {{0}};
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
             const uint32_t j = sim->nl.j[q];
-            if (ps->kind[j] != RY_KIND_FLUID || !(surface[j] != 0.0) || isnan(raw[j])) continue;
+            if (ps->kind[j] != RY_KIND_FLUID || isnan(nrm[3 * j])) continue;
+            double dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+            ry_box_min_image(&sim->box, dx);
+            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+            if (r2 >= re2 || r2 <= 0) continue;
+            const double wr = ry_mps_weight_tamai(sqrt(r2), st->re) / r2;
+            for (int a = 0; a < dim; ++a) {
+                const double dn = nrm[3 * j + a] - nrm[3 * i + a];
+                for (int b = 0; b < dim; ++b) {
+                    m[a][b] += wr * dx[a] * dx[b];
+                    h[a][b] += wr * dn * dx[b];
+                }
+            }
+        }
+        double div = 0, y[3];
+        int ok = 1;
+        for (int a = 0; a < dim && ok; ++a) {
+            ok = ry_solve_small(dim, m, h[a], y);
+            div += y[a];
+        }
+        /* No curvature radius below two spacings: what is sharper is not resolved. */
+        const double kmax = (dim - 1) / (2.0 * st->l0);
+        raw[i] = ok ? fmax(fmin(div, kmax), -kmax) : 0.0;
+    }
+    /* Averaged over the neighbours that have a normal (weights w, the particle itself 1). */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        kappa[i] = 0;
+        if (isnan(nrm[3 * i])) continue;
+        double ks = raw[i], ws = 1.0;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            if (ps->kind[j] != RY_KIND_FLUID || isnan(nrm[3 * j])) continue;
             double dx[3] = {0, 0, 0}, r2 = 0;
             for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
             ry_box_min_image(&sim->box, dx);
@@ -148,7 +183,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, const doub
             ks += w * raw[j];
             ws += w;
         }
-        kappa[i] = ws > 0 ? ks / ws : 0.0;
+        kappa[i] = ks / ws;
     }
 }
 
@@ -170,19 +205,17 @@ ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, cons
         }
         return RY_OK;
     }
-    double *kappa = malloc(2 * n * sizeof *kappa);
+    double *kappa = malloc(5 * n * sizeof *kappa);
     RY_CHECK(err, kappa != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
     ry_st_curvature(st, sim, surface, kappa);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID || !(surface && surface[i] != 0.0)) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || kappa[i] == 0.0) continue;
         double s[3], count;
         st_sums(st, sim, i, s, &count);
-        double norm = 0;
-        for (int d = 0; d < dim; ++d) norm += s[d] * s[d];
-        if (norm <= 0) continue;
-        norm = sqrt(norm);
-        const double fac = st->sigma * kappa[i] * area / (m[i] * norm);
+        /* a_i = sigma kappa_i g_i l0^(d-1) / (m_i S): over a column across a flat surface the
+         * forces add up to sigma kappa l0^(d-1). */
+        const double fac = st->sigma * kappa[i] * area / (m[i] * st->delta_sum);
         for (int d = 0; d < dim; ++d) a[d][i] += fac * s[d];
     }
     free(kappa);

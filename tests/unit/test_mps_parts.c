@@ -1,6 +1,6 @@
 /* Unit tests of the MPS building blocks: lattice constants n0 and lambda (seed eq. 4, 8), the
  * potential model's coefficient C (seed eq. 11-12) against a hand computation, the CSF lattice
- * constants, and the conjugate-gradient solver.
+ * constant, and the conjugate-gradient solver.
  *
  * Tolerances: sums of a handful of terms written out by hand, 1e-12 relative (rounding only);
  * the hand-evaluated decimal value of the 2D pair sum, 1e-5 (its 6 printed digits); the
@@ -98,16 +98,22 @@ static void test_potential_force_is_derivative(void **state) {
     assert_true(ry_st_potential_f(3.2, l0, re) == 0.0 && ry_st_potential_phi(3.2, l0, re) == 0.0);
 }
 
-/* CSF lattice constants in 2D, re = 3.1 l0: 28 neighbours (6 on each axis line ... counted by
- * rows: 6 + 2 x 5 + 2 x 5 + 2 x 1), 17 of them at or below the particle's row. */
+/* CSF lattice constants in 2D, re = 3.1 l0: the inward sum sum_j w x_ij/r of a particle in the
+ * top layer of a flat surface, by hand: neighbours 1 to 3 rows down (s) and u columns across,
+ * normal component w s / r: s = 1: u = 0, +-1, +-2; s = 2: u = 0, +-1, +-2; s = 3: u = 0. */
 static void test_csf_lattice(void **state) {
     (void)state;
+    const double l0 = 1e-4, re = 3.1e-4;
+#define W(r) ry_mps_weight_tamai((r)*l0, re)
+    const double g_top = W(1) + 2 * W(sqrt(2.0)) / sqrt(2.0) + 2 * W(sqrt(5.0)) / sqrt(5.0) + W(2) +
+                         2 * 2 * W(sqrt(5.0)) / sqrt(5.0) + 2 * 2 * W(sqrt(8.0)) / sqrt(8.0) + W(3);
+#undef W
     ry_surface_tension st;
     ry_error err = {0};
-    assert_int_equal(ry_st_setup(&st, RY_ST_CSF, 2, 1e-4, 3.1e-4, 0.0728, &err), RY_OK);
-    assert_true(st.count0 == 28.0);
-    assert_rel(st.flat_fraction, 17.0 / 28.0, 1e-12, "flat fraction");
-    assert_int_equal(ry_st_setup(&st, RY_ST_CSF, 4, 1e-4, 3.1e-4, 0.0728, &err), RY_ERR_INPUT);
+    assert_int_equal(ry_st_setup(&st, RY_ST_CSF, 2, l0, re, 0.0728, &err), RY_OK);
+    assert_rel(st.g_top, g_top, 1e-12, "top-layer inward sum");
+    assert_true(st.delta_sum > st.g_top);
+    assert_int_equal(ry_st_setup(&st, RY_ST_CSF, 4, l0, re, 0.0728, &err), RY_ERR_INPUT);
 }
 
 /* -u'' = 1 on (0, 1), u(0) = u(1) = 0, by second differences on n interior points: the
