@@ -1,6 +1,7 @@
-/* ryushi — surface-tension models for particle methods (MPS and SPH): the CSF model in the
- * MPS form of Nomura et al. (2001) and the inter-particle potential model of Kondo et al.
- * (2007) (seed 003, eq. 9-12). docs/mps.md gives the equations.
+/* ryushi — surface-tension models for particle methods (MPS and SPH): the continuum surface
+ * force (Brackbill et al. 1992; in particle form after Nomura et al. 2001) with the curvature
+ * from the colour function, and the inter-particle potential model of Kondo et al. (2007)
+ * (seed 003, eq. 9-12). docs/mps.md gives the equations.
  *
  * Both act on fluid particles only and read a neighbour list that covers the model's radius
  * re (3.1 spacings by default); the acceleration of particle i is its force divided by the
@@ -48,16 +49,13 @@ double ry_st_potential_pair_sum(int dim, double l0, double re);
 double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
 
 /* Adds the surface-tension acceleration to a[d][i] of every fluid particle. The neighbour list
- * of sim must hold all pairs within st->re. CSF needs surface[i] (non-zero for the particles
- * on the free surface; the force acts on them only, with the curvature of Nomura et al.
- * averaged over the surface particles within re); the potential model ignores it. */
-ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
-                           double *const a[3], ry_error *err);
+ * of sim must hold all pairs within st->re. */
+ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],
+                           ry_error *err);
 
 /* CSF curvature (1/R in 2D, 2/R in 3D for a sphere) of the fluid particles near the surface
  * (0 elsewhere): the corrected divergence of the colour function's outward normal. kappa holds
- * 5 n doubles (the rest is work space); surface is not used (kept for other estimates). */
-void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
-                     double *kappa);
+ * 5 n doubles (the rest is work space). */
+void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *kappa);
 
 #endif

@@ -434,7 +434,7 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     const double g = M->gamma;
     /* Dirichlet values: 0, or the Laplace jump sigma kappa with CSF in pressure form. */
     for (size_t i = 0; i < n; ++i) M->pd[i] = 0;
-    if (M->csf_pressure) ry_st_curvature(&M->st, sim, ps->f[M->f_surf], M->pd);
+    if (M->csf_pressure) ry_st_curvature(&M->st, sim, M->pd);
     for (size_t i = 0; i < n; ++i) M->pd[i] *= M->csf_pressure ? M->st.sigma : 0.0;
     const double rel = M->re_l, rel2 = rel * rel, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
 #pragma omp parallel for schedule(dynamic, 64)
@@ -562,12 +562,11 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
     size_t n = ps->n;
-    if (M->st.model == RY_ST_CSF) number_density(sim, M); /* surface particles at x^n */
     double *a[3];
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
     for (size_t i = 0; i < n; ++i)
         for (int d = 0; d < dim; ++d) a[d][i] = ps->kind[i] == RY_KIND_FLUID ? sim->gravity[d] : 0;
-    if (!M->csf_pressure) RY_TRY(ry_st_accelerate(&M->st, sim, ps->f[M->f_surf], a, err));
+    if (!M->csf_pressure) RY_TRY(ry_st_accelerate(&M->st, sim, a, err));
     if (M->visc == VISC_EXPLICIT) viscous_explicit(sim, M);
     if (M->visc == VISC_IMPLICIT) {
         RY_TRY(viscous_implicit(sim, M, dt, err));

@@ -43,7 +43,7 @@ void ry_csr_free(ry_csr *a) {
 
 void ry_csr_mul(const ry_csr *a, const double *x, double *y) {
     const size_t n = a->n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 4096)
     for (size_t i = 0; i < n; ++i) {
         double s = 0;
         for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) s += a->val[q] * x[a->col[q]];
@@ -58,7 +58,7 @@ static double dot(const double *x, const double *y, size_t n) {
     double part[256], s = 0;
     for (size_t b0 = 0; b0 < nb; b0 += 256) {
         const size_t b1 = nb - b0 < 256 ? nb : b0 + 256;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (b1 - b0 > 1)
         for (size_t b = b0; b < b1; ++b) {
             const size_t i1 = (b + 1) * DOT_BLOCK < n ? (b + 1) * DOT_BLOCK : n;
             double t = 0;
@@ -83,7 +83,7 @@ ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_
         return RY_OK;
     }
     ry_csr_mul(a, x, q);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 4096)
     for (size_t i = 0; i < n; ++i) {
         r[i] = b[i] - q[i];
         z[i] = r[i] / a->diag[i];
@@ -99,7 +99,7 @@ ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_
                  "not positive definite)",
                  k, pq);
         const double alpha = rz / pq;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 4096)
         for (size_t i = 0; i < n; ++i) {
             x[i] += alpha * p[i];
             r[i] -= alpha * q[i];
@@ -108,7 +108,7 @@ ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_
         const double rz1 = dot(r, z, n);
         const double beta = rz1 / rz;
         rz = rz1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 4096)
         for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
         rn = sqrt(dot(r, r, n));
         ++k;

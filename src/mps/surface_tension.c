@@ -1,5 +1,6 @@
-/* Surface tension for particle methods: CSF after Nomura et al. (2001) and the potential model
- * of Kondo et al. (2007), seed 003 eq. 9-12. See include/ryushi/surface_tension.h. */
+/* Surface tension for particle methods: CSF (curvature from the colour function) and the
+ * potential model of Kondo et al. (2007), seed 003 eq. 9-12. See include/ryushi/surface_tension.h.
+ */
 #include <math.h>
 #include <stdlib.h>
 
@@ -112,9 +113,7 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
  * over the neighbours that have a normal, exact for a linear normal field however one-sided the
  * neighbourhood; limited to radii of two spacings and up, then averaged over the neighbours
  * that have a normal. kappa holds 5 n doubles: kappa, then work space. */
-void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
-                     double *kappa) {
-    (void)surface;
+void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *kappa) {
     const ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
@@ -187,8 +186,8 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, const doub
     }
 }
 
-ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, const double *surface,
-                           double *const a[3], ry_error *err) {
+ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],
+                           ry_error *err) {
     if (st->model == RY_ST_NONE || st->sigma == 0.0) return RY_OK;
     const ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
@@ -207,7 +206,7 @@ ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, cons
     }
     double *kappa = malloc(5 * n * sizeof *kappa);
     RY_CHECK(err, kappa != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
-    ry_st_curvature(st, sim, surface, kappa);
+    ry_st_curvature(st, sim, kappa);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID || kappa[i] == 0.0) continue;
