@@ -56,4 +56,15 @@ ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_
                                 const ry_table *ghia_v, const char *out_dir, double *rms_u,
                                 double *rms_v, ry_error *err);
 
+/* Oscillating drop as the seed measures it (seed 003, section 3): from a column (the width),
+ * smoothed by a moving average over 5 rows, the half period is the time of the first maximum
+ * of the width (the first local maximum above the middle between the initial and the largest
+ * width) and the period the time of the least width after it, searched up to 2.5 half periods (NAN
+ * when that minimum lies at the end of the search, i.e. the record is too short). */
+typedef struct ry_drop_periods {
+    double half, period;                 /* [s] */
+    double width0, width_max, width_min; /* smoothed widths at 0, half, period */
+} ry_drop_periods;
+ry_drop_periods ry_drop_periods_measure(const ry_table *series, const char *name);
+
 #endif

@@ -11,4 +11,7 @@ int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int
 int ry_cli_validate_plate(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *failures);
 
+/* The MPS scheme: hydrostatic column, oscillating drops, drop at rest (validate_mps.c). */
+int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failures);
+
 #endif

@@ -1,6 +1,7 @@
 /* The scheme registry: every scheme a case can name in `scheme.name`. */
 #include <string.h>
 
+#include "ryushi/mps.h"
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
 #include "sph/wcsph.h"
@@ -36,8 +37,8 @@ static const ry_scheme_type scheme_static = {
     static_step, static_free,
     NULL};
 
-static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &ry_scheme_solid,
-                                                    &scheme_static, NULL};
+static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &ry_scheme_mps,
+                                                    &ry_scheme_solid, &scheme_static, NULL};
 
 const ry_scheme_type *const *ry_schemes(void) {
     return all_schemes;

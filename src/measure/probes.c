@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "ryushi/mps.h"
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
 
@@ -177,6 +178,9 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &ry_probe_solid_kinetic_energy,
                                              &ry_probe_strain_energy,
                                              &ry_probe_min_spacing,
+                                             &ry_probe_width_x,
+                                             &ry_probe_drop_pressure,
+                                             &ry_probe_ppe_iterations,
                                              NULL};
 
 const ry_probe *const *ry_probes(void) {

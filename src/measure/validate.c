@@ -201,3 +201,46 @@ ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_
     return centreline(sim, "v_horizontal_centreline", 0, L, U, ghia_v, "x_over_L", "v_over_U", 1,
                       path, rms_v, err);
 }
+
+ry_drop_periods ry_drop_periods_measure(const ry_table *series, const char *name) {
+    ry_drop_periods out = {NAN, NAN, NAN, NAN, NAN};
+    const int ct = ry_table_col(series, "t"), cw = ry_table_col(series, name);
+    const size_t n = series->nrows;
+    if (ct < 0 || cw < 0 || n < 5) return out;
+    double *w = malloc(n * sizeof *w);
+    if (!w) return out;
+    /* Moving average over 5 rows (3 at the ends, the first row as it is). */
+    for (size_t r = 0; r < n; ++r) {
+        double s = 0;
+        int k = 0;
+        for (long q = (long)r - 2; q <= (long)r + 2; ++q)
+            if (q >= 0 && q < (long)n && isfinite(ry_table_at(series, (size_t)q, cw))) {
+                s += ry_table_at(series, (size_t)q, cw);
+                ++k;
+            }
+        w[r] = r == 0 || k == 0 ? ry_table_at(series, r, cw) : s / k;
+    }
+    /* The first maximum: the first row above the middle between the start and the largest
+     * width, then on while the width grows. */
+    size_t imax = 1;
+    for (size_t r = 1; r < n; ++r)
+        if (w[r] > w[imax]) imax = r;
+    const double mid = 0.5 * (w[0] + w[imax]);
+    size_t r0 = 1;
+    while (r0 < imax && w[r0] <= mid) ++r0;
+    while (r0 + 1 < n && w[r0 + 1] >= w[r0]) ++r0;
+    imax = r0;
+    const double th = ry_table_at(series, imax, ct);
+    size_t imin = imax;
+    for (size_t r = imax + 1; r < n && ry_table_at(series, r, ct) <= 2.5 * th; ++r)
+        if (w[r] < w[imin]) imin = r;
+    out.width0 = w[0];
+    out.width_max = w[imax];
+    out.half = th;
+    if (imin > imax && imin + 1 < n && ry_table_at(series, imin, ct) < 2.5 * th) {
+        out.period = ry_table_at(series, imin, ct);
+        out.width_min = w[imin];
+    }
+    free(w);
+    return out;
+}

@@ -1,0 +1,61 @@
+/* ryushi — surface-tension models for particle methods (MPS and SPH): the continuum surface
+ * force (Brackbill et al. 1992; in particle form after Nomura et al. 2001) with the curvature
+ * from the colour function, and the inter-particle potential model of Kondo et al. (2007)
+ * (seed 003, eq. 9-12). docs/mps.md gives the equations.
+ *
+ * Both act on fluid particles only and read a neighbour list that covers the model's radius
+ * re (3.1 spacings by default); the acceleration of particle i is its force divided by the
+ * particle's mass (field `mass`), so the same code serves MPS (m = rho l0^d) and SPH. */
+#ifndef RYUSHI_SURFACE_TENSION_H
+#define RYUSHI_SURFACE_TENSION_H
+
+#include "ryushi/sim.h"
+
+#define RY_PI 3.14159265358979323846
+
+typedef enum ry_st_model { RY_ST_NONE = 0, RY_ST_CSF, RY_ST_POTENTIAL } ry_st_model;
+
+typedef struct ry_surface_tension {
+    int model; /* ry_st_model */
+    int dim;
+    double sigma; /* surface tension coefficient [N/m] */
+    double l0;    /* lattice spacing [m] */
+    double re;    /* radius of the model [m] */
+    /* potential model: C of eq. 11 (negative: the sum of the potential over the pairs across
+     * the split is negative) [N/m^2 in 3D] */
+    double C;
+    /* CSF: sum over a column across a flat surface of the inward weight sums (the discrete
+     * delta function's normalisation) [m] */
+    double delta_sum;
+    double g_top; /* that sum for the top layer alone */
+} ry_surface_tension;
+
+/* Names used in case files: "none", "csf", "potential" (NULL-terminated, indexed by model). */
+extern const char *const ry_st_model_names[];
+
+/* Sets up a model on the square (2D) or simple cubic (3D) lattice of spacing l0. */
+ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, double re,
+                      double sigma, ry_error *err);
+
+/* Potential model (seed eq. 10 and 12): the inter-particle force f(r) = (r - l0)(r - re) and
+ * its potential phi(r) = 1/3 (3/2 l0 - 1/2 re - r)(r - re)^2, f = -dphi/dr; both 0 for r > re. */
+double ry_st_potential_f(double r, double l0, double re);
+double ry_st_potential_phi(double r, double l0, double re);
+/* Sum of phi over the pairs (i in A, j in B) of a lattice split into two half-spaces, per
+ * lattice site of the split plane (i runs over one column of A normal to the plane, j over all
+ * of B): the right-hand sum of eq. 11. */
+double ry_st_potential_pair_sum(int dim, double l0, double re);
+/* C from 2 sigma l0^(d-1) = C sum (eq. 11; in 2D per unit depth). */
+double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
+
+/* Adds the surface-tension acceleration to a[d][i] of every fluid particle. The neighbour list
+ * of sim must hold all pairs within st->re. */
+ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],
+                           ry_error *err);
+
+/* CSF curvature (1/R in 2D, 2/R in 3D for a sphere) of the fluid particles near the surface
+ * (0 elsewhere): the corrected divergence of the colour function's outward normal. kappa holds
+ * 5 n doubles (the rest is work space). */
+void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *kappa);
+
+#endif

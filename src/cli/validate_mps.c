@@ -1,0 +1,363 @@
+/* ryushi validate mps: the MPS scheme (seed 003, SPEC section 3) against its references:
+ * hydrostatic pressure, oscillating drops against Lamb beside the seed's Tables 3-4, a drop at
+ * rest against the Laplace jump; tables on stdout and in mps_droplets.md, plots as PNG. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "ryushi/atomic_file.h"
+#include "ryushi/mps.h"
+#include "ryushi/plot.h"
+#include "ryushi/validate.h"
+
+#define PI 3.14159265358979323846
+
+static void check(const char *what, int ok, int *failures) {
+    printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
+    if (!ok) ++*failures;
+}
+
+/* Runs a case into out/sub; keeps the simulation (caller frees) and reads its series. */
+static ry_status run_mps(const char *root, const char *out, const char *case_rel, const char *sub,
+                         int nset, const char *const *sets, ry_table *series, ry_sim *sim,
+                         ry_run_stats *stats, ry_error *err) {
+    char cpath[4096], odir[4096], spath[4200];
+    snprintf(cpath, sizeof cpath, "%s/%s", root, case_rel);
+    snprintf(odir, sizeof odir, "%s/%s", out, sub);
+    RY_TRY(ry_run_case_file(cpath, nset, sets, odir, sim, stats, err));
+    snprintf(spath, sizeof spath, "%s/series.csv", odir);
+    ry_status st = ry_table_read(series, spath, err);
+    if (st != RY_OK) ry_sim_free(sim);
+    return st;
+}
+
+static void plot_column(ry_plot *p, int panel, const char *label, const ry_table *t,
+                        const char *col, double sx, double sy) {
+    ry_error err = {0};
+    const int ix = ry_table_col(t, "t"), iy = ry_table_col(t, col);
+    if (ix < 0 || iy < 0) return;
+    double *x = ry_table_column(t, ix), *y = ry_table_column(t, iy);
+    if (x && y) {
+        for (size_t r = 0; r < t->nrows; ++r) {
+            x[r] *= sx;
+            y[r] *= sy;
+        }
+        ry_plot_series(p, panel, label, t->nrows, x, y, ry_plot_style_line(), &err);
+    }
+    free(x);
+    free(y);
+}
+
+static void write_plot(ry_plot *p, const char *out, const char *name, int *failures) {
+    ry_error err = {0};
+    char png[4096];
+    snprintf(png, sizeof png, "%s/%s", out, name);
+    if (ry_plot_write_png(p, png, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+    } else {
+        printf("  plot: %s\n", png);
+    }
+}
+
+/* Hydrostatic column: mean pressure of the fluid rows at depths of 5 to 38 spacings against
+ * rho g h, and the largest speed late in the run. */
+static void validate_hydrostatic(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    const char *sets[] = {quick ? "time.end=1.0" : "time.end=2.0", "time.dt_max=0.001",
+                          "output.vtk=false"};
+    ry_table s;
+    ry_sim sim;
+    ry_run_stats stats;
+    printf("MPS hydrostatic column, 2D, H = 0.4 m, l0 = 0.01 m (cases/mps_hydrostatic.yaml)\n");
+    if (run_mps(root, out, "cases/mps_hydrostatic.yaml", "mps_hydrostatic", 3, sets, &s, &sim,
+                &stats, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+        return;
+    }
+    const double H = 0.4, rho = 1000.0, g = 9.81;
+    printf("  %10s %12s %12s %9s\n", "depth [m]", "p [Pa]", "rho g h [Pa]", "error");
+    double worst = 0;
+    const int ks[] = {5, 10, 20, 30, 38};
+    for (int q = 0; q < 5; ++q) {
+        const double y0 = H - 0.005 - 0.01 * ks[q];
+        double ps = 0, ys = 0;
+        int cnt = 0;
+        for (size_t i = 0; i < sim.ps.n; ++i) {
+            const double x = sim.ps.f[RY_F_X][i], y = sim.ps.f[RY_F_Y][i];
+            if (sim.ps.kind[i] == RY_KIND_FLUID && fabs(y - y0) < 0.005 && x > 0.04 && x < 0.16) {
+                ps += sim.ps.f[RY_F_P][i];
+                ys += y;
+                ++cnt;
+            }
+        }
+        if (cnt == 0) continue;
+        const double h = H - ys / cnt, e = ps / cnt / (rho * g * h) - 1;
+        printf("  %10.3f %12.1f %12.1f %+8.2f%%\n", h, ps / cnt, rho * g * h, 100 * e);
+        if (ks[q] >= 10) worst = fmax(worst, fabs(e));
+    }
+    const double vlate = ry_column_max(&s, "max_speed");
+    printf("  largest speed over the run %.4f m/s; %.2f PPE iterations per step; %.1f s wall\n",
+           vlate, (double)ry_mps_total_iterations(&sim) / (double)stats.steps, stats.wall_s);
+    check("pressure at depths of 10 to 38 spacings within 2 % of rho g h", worst <= 0.02, failures);
+    check("largest speed below 0.1 m/s (no growing oscillation)", vlate < 0.1, failures);
+    ry_sim_free(&sim);
+    ry_table_free(&s);
+}
+
+typedef struct drop_case {
+    const char *name, *file;
+    int dim, n;           /* particles along a side */
+    double seed_half_err; /* seed Tables 3-4 (NAN: none) */
+    double seed_period_err;
+} drop_case;
+
+/* One oscillating drop: period against Lamb (mode 4 in 2D and 3D). Appends a row to md. */
+static void run_drop(const char *root, const char *out, const drop_case *dc, const char *model,
+                     FILE *md, ry_plot *plot, int panel, int *failures, double *half_err,
+                     double *period_err) {
+    ry_error err = {0};
+    char sub[128], mset[64];
+    snprintf(sub, sizeof sub, "mps_%s_%s", dc->name, model);
+    snprintf(mset, sizeof mset, "surface_tension.model=%s", model);
+    const char *sets[] = {mset};
+    ry_table s;
+    ry_sim sim;
+    ry_run_stats stats;
+    const double l0 = 1e-4, a = dc->n * l0, sigma = 0.0728, rho = 1000.0;
+    const double R = dc->dim == 2 ? a / sqrt(PI) : a * cbrt(3.0 / (4.0 * PI));
+    const double k = dc->dim == 2 ? 60.0 : 72.0; /* n^3 - n, n = 4; (s-1) s (s+2), s = 4 */
+    const double T = 2 * PI / sqrt(k * sigma / (rho * R * R * R));
+    *half_err = *period_err = NAN;
+    ry_status st = run_mps(root, out, dc->file, sub, 1, sets, &s, &sim, &stats, &err);
+    if (st != RY_OK) {
+        printf("  %-10s %-9s failed: %s\n", dc->name, model, err.msg);
+        fprintf(md, "| %s | %s | %.3f | failed: %s | | | | | | |\n", dc->name, model, 1e3 * T,
+                err.msg);
+        ++*failures;
+        return;
+    }
+    ry_drop_periods d = ry_drop_periods_measure(&s, "width_x");
+    *half_err = d.half / (0.5 * T) - 1;
+    *period_err = d.period / T - 1;
+    const double its = (double)ry_mps_total_iterations(&sim) / (double)stats.steps;
+    const double sps = stats.steps / stats.wall_s;
+    printf("  %-10s %-9s %8zu %8.3f %8.3f %+7.1f%% %8.3f %+7.1f%% %7ld %8.1f %8.2f %8.1f\n",
+           dc->name, model, sim.ps.n, 1e3 * T, 1e3 * d.half, 100 * *half_err, 1e3 * d.period,
+           100 * *period_err, stats.steps, its, sps, stats.wall_s);
+    char seed[64] = "";
+    if (isfinite(dc->seed_half_err))
+        snprintf(seed, sizeof seed, "%.0f %% / %.0f %%", 100 * dc->seed_half_err,
+                 100 * dc->seed_period_err);
+    fprintf(md,
+            "| %s | %s | %zu | %.3f | %.3f | %+.1f %% | %.3f | %+.1f %% | %s | %ld | %.1f | %.2f | "
+            "%.0f |\n",
+            dc->name, model, sim.ps.n, 1e3 * T, 1e3 * d.half, 100 * *half_err, 1e3 * d.period,
+            100 * *period_err, seed, stats.steps, its, sps, stats.wall_s);
+    char label[64];
+    snprintf(label, sizeof label, "%s", model);
+    plot_column(plot, panel, label, &s, "width_x", 1e3, 1e3);
+    ry_sim_free(&sim);
+    ry_table_free(&s);
+}
+
+static void validate_drops(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    /* Seed 003 Tables 3-4: errors of the half period / period, CSF and potential model. */
+    const drop_case cases[] = {
+        {"square40", "cases/mps_droplet_square.yaml", 2, 40, NAN, NAN},
+        {"cube20", "cases/mps_droplet_cube20.yaml", 3, 20, 0.32, 0.47},
+        {"cube30", "cases/mps_droplet_cube30.yaml", 3, 30, 0.14, 0.37},
+    };
+    const double seed_pot[3][2] = {{NAN, NAN}, {0.32, 0.13}, {0.14, 0.03}};
+    const int ncase = quick ? 2 : 3;
+    const char *models[2] = {"potential", "csf"};
+    char mdp[4096];
+    snprintf(mdp, sizeof mdp, "%s/mps_droplets.md", out);
+    FILE *md = fopen(mdp, "w");
+    if (!md) {
+        fprintf(stderr, "ryushi: validate: cannot write %s\n", mdp);
+        ++*failures;
+        return;
+    }
+    fprintf(md, "| drop | model | particles | Lamb T [ms] | half period [ms] | error | period "
+                "[ms] | error | seed (half / period) | steps | PPE iterations / step | steps/s "
+                "| wall [s] |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, ncase, 520 * ncase, 480, &err) != RY_OK) {
+        fclose(md);
+        ++*failures;
+        return;
+    }
+    printf("MPS oscillating drops (seed 003: rho = 1e3, nu = 1e-6, sigma = 0.0728, l0 = 1e-4 m), "
+           "mode 4 against Lamb\n");
+    printf("  %-10s %-9s %8s %8s %8s %8s %8s %8s %7s %8s %8s %8s\n", "drop", "model", "particles",
+           "T [ms]", "T/2 sim", "error", "T sim", "error", "steps", "it/step", "steps/s", "wall_s");
+    for (int c = 0; c < ncase; ++c) {
+        char title[96];
+        snprintf(title, sizeof title, "%s: width through the centre", cases[c].name);
+        ry_plot_panel(p, c, title, "t [ms]", "width [mm]", &err);
+        for (int m = 0; m < 2; ++m) {
+            drop_case dc = cases[c];
+            if (m == 0) {
+                dc.seed_half_err = seed_pot[c][0];
+                dc.seed_period_err = seed_pot[c][1];
+            }
+            double he, pe;
+            run_drop(root, out, &dc, models[m], md, p, c, failures, &he, &pe);
+            char what[128];
+            if (m == 0 && dc.dim == 3) {
+                const double bar = dc.n == 30 ? 0.03 : 0.08;
+                snprintf(what, sizeof what, "%s potential: period within %.0f %% of Lamb", dc.name,
+                         100 * bar);
+                check(what, fabs(pe) <= bar, failures);
+            }
+            if (m == 1 && dc.dim == 3 && dc.n == 30) {
+                snprintf(what, sizeof what, "%s CSF: period within 10 %% of Lamb", dc.name);
+                check(what, fabs(pe) <= 0.10, failures);
+            }
+            if (m == 0 && dc.dim == 2) {
+                snprintf(what, sizeof what, "%s potential: period within 10 %% of Lamb", dc.name);
+                check(what, fabs(pe) <= 0.10, failures);
+            }
+        }
+        ry_plot_legend(p, c, RY_PLOT_LEGEND_SE, &err);
+    }
+    fclose(md);
+    printf("  table: %s\n", mdp);
+    write_plot(p, out, "mps_droplets.png", failures);
+    ry_plot_free(p);
+}
+
+/* A circular drop at rest: pressure in its middle half against sigma / R (means over the
+ * second half of the run), and the spurious speeds. */
+static void validate_rest(const char *root, const char *out, int *failures) {
+    const char *models[2] = {"potential", "csf"};
+    const double R = 2e-3, sigma = 0.0728;
+    printf("MPS drop at rest, 2D, R = 2 mm (cases/mps_drop_rest_2d.yaml): Laplace jump sigma/R "
+           "= %.2f Pa\n",
+           sigma / R);
+    printf("  %-9s %14s %9s %16s %16s\n", "model", "p inside [Pa]", "error", "mean speed [m/s]",
+           "max speed [m/s]");
+    for (int m = 0; m < 2; ++m) {
+        ry_error err = {0};
+        char sub[64], mset[64];
+        snprintf(sub, sizeof sub, "mps_rest_%s", models[m]);
+        snprintf(mset, sizeof mset, "surface_tension.model=%s", models[m]);
+        const char *sets[] = {mset};
+        ry_table s;
+        ry_sim sim;
+        ry_run_stats stats;
+        if (run_mps(root, out, "cases/mps_drop_rest_2d.yaml", sub, 1, sets, &s, &sim, &stats,
+                    &err) != RY_OK) {
+            printf("  %-9s failed: %s\n", models[m], err.msg);
+            ++*failures;
+            continue;
+        }
+        const int ct = ry_table_col(&s, "t"), cp = ry_table_col(&s, "drop_pressure"),
+                  cv = ry_table_col(&s, "max_speed"), ck = ry_table_col(&s, "kinetic_energy");
+        const double tend = ry_table_at(&s, s.nrows - 1, ct);
+        double ps = 0, vs = 0, vmax = 0, ke = 0;
+        int cnt = 0;
+        for (size_t r = 0; r < s.nrows; ++r) {
+            if (ry_table_at(&s, r, ct) < 0.5 * tend) continue;
+            ps += ry_table_at(&s, r, cp);
+            vmax = fmax(vmax, ry_table_at(&s, r, cv));
+            ke += ry_table_at(&s, r, ck);
+            ++cnt;
+        }
+        double mass = 0;
+        for (size_t i = 0; i < sim.ps.n; ++i)
+            if (sim.ps.kind[i] == RY_KIND_FLUID) mass += sim.ps.f[RY_F_MASS][i];
+        vs = cnt ? sqrt(2 * ke / cnt / mass) : NAN; /* rms speed */
+        const double p = cnt ? ps / cnt : NAN, e = p / (sigma / R) - 1;
+        printf("  %-9s %14.2f %+8.1f%% %16.4f %16.4f\n", models[m], p, 100 * e, vs, vmax);
+        char what[96];
+        snprintf(what, sizeof what, "%s: pressure jump within 5 %% of sigma/R", models[m]);
+        check(what, fabs(e) <= 0.05, failures);
+        ry_sim_free(&sim);
+        ry_table_free(&s);
+    }
+}
+
+/* MPS dam break against Martin & Moyce, beside WCSPH at the same spacing (a/20). */
+static void validate_dam_break_mps(const char *root, const char *out, int *failures) {
+    ry_error err = {0};
+    char ref_path[4096];
+    snprintf(ref_path, sizeof ref_path, "%s/%s", root,
+             "data/reference/martin_moyce1952_n2_2_surge_front_table2.csv");
+    ry_table ref;
+    if (ry_table_read(&ref, ref_path, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+        return;
+    }
+    const double a = 0.05715, g = 9.81;
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 1, 700, 520, &err) != RY_OK) {
+        ry_table_free(&ref);
+        ++*failures;
+        return;
+    }
+    ry_plot_panel(p, 0, "Martin & Moyce column, a/20: MPS and WCSPH", "T = t sqrt(2g/a)",
+                  "Z = front / a", &err);
+    printf("Dam break, Martin & Moyce (1952), n^2 = 2, a/20: surge front Z(T), T <= 3\n");
+    printf("  %-8s %10s %8s %8s %6s %8s %8s %8s %8s\n", "scheme", "particles", "max|dZ|", "rms dZ",
+           "dT", "rms(dT)", "outside", "in_wall", "wall_s");
+    const char *files[2] = {"cases/mps_dam_break_mm.yaml", "cases/dam_break_mm.yaml"};
+    const char *names[2] = {"MPS", "WCSPH"};
+    for (int k = 0; k < 2; ++k) {
+        const char *sets[] = {"time.end=0.18", "time.output_interval=0.001", "output.vtk=false",
+                              "measure=[front_x, mass, kinetic_energy, outside, in_wall]"};
+        char sub[64];
+        snprintf(sub, sizeof sub, "dam_break_mm_%s", names[k]);
+        ry_table s;
+        ry_sim sim;
+        ry_run_stats stats;
+        if (run_mps(root, out, files[k], sub, 4, sets, &s, &sim, &stats, &err) != RY_OK) {
+            printf("  %-8s failed: %s\n", names[k], err.msg);
+            ++*failures;
+            continue;
+        }
+        ry_front_cmp cmp;
+        if (ry_compare_front(&s, &ref, a, g, 3.0, &cmp, &err) != RY_OK) ++*failures;
+        printf("  %-8s %10zu %8.3f %8.3f %6.3f %8.3f %8.0f %8.0f %8.1f\n", names[k], sim.ps.n,
+               cmp.max_dev, cmp.rms_dev, cmp.shift, cmp.rms_dev_shifted,
+               ry_column_max(&s, "outside"), ry_column_max(&s, "in_wall"), stats.wall_s);
+        plot_column(p, 0, names[k], &s, "front_x", sqrt(2 * g / a), 1 / a);
+        if (k == 0) {
+            check("MPS: front within 0.30 (max) and 0.20 (rms) of the experiment",
+                  cmp.max_dev <= 0.30 && cmp.rms_dev <= 0.20, failures);
+            check("MPS: mass exact, no fluid outside the tank",
+                  ry_mass_drift(&s) <= 1e-12 && ry_column_max(&s, "outside") == 0, failures);
+        }
+        ry_sim_free(&sim);
+        ry_table_free(&s);
+    }
+    const int cT = ry_table_col(&ref, "T"), cZ = ry_table_col(&ref, "Z");
+    if (cT >= 0 && cZ >= 0) {
+        double *x = ry_table_column(&ref, cT), *y = ry_table_column(&ref, cZ);
+        if (x && y)
+            ry_plot_series(p, 0, "Martin & Moyce (1952)", ref.nrows, x, y,
+                           ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+        free(x);
+        free(y);
+    }
+    ry_plot_xrange(p, 0, 0, 3.5, &err);
+    ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
+    write_plot(p, out, "mps_dam_break.png", failures);
+    ry_plot_free(p);
+    ry_table_free(&ref);
+}
+
+int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failures) {
+    validate_hydrostatic(root, out, quick, failures);
+    validate_dam_break_mps(root, out, failures);
+    validate_drops(root, out, quick, failures);
+    validate_rest(root, out, failures);
+    return 0;
+}

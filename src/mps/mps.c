@@ -1,0 +1,753 @@
+/* Moving Particle Semi-implicit method (Koshizuka & Oka 1996; seed 003, SPEC section 3).
+ *
+ *  weight      w(r) = (r/re - 1)^2 for r < re (Tamai et al. 2017; seed eq. 3)
+ *  number density  n_i = sum_j w(r_ij) (eq. 4); n0 and lambda from the full lattice
+ *  gradient    Iribe's corrected gradient with Koshizuka's minimum pressure (eq. 5):
+ *              <grad p>_i = [sum_j w x^_ij (x) x^_ij]^-1 sum_j w (p_j - p^_i) x_ij / r_ij^2,
+ *              x^ = x_ij / r_ij, p^_i the least pressure over i and its neighbours
+ *  divergence  <div u>_i = d/n0 sum_j (u_j - u_i).x_ij / r_ij^2 w (eq. 6)
+ *  Laplacian   <lap f>_i = 2d/(lambda n0) sum_j (f_j - f_i) w (eq. 7-8)
+ *  step        u* = u^n + dt (g + f_st + nu lap u) (explicit viscosity) or
+ *              (1 - dt nu lap) u* = u^n + dt (g + f_st) (implicit viscosity); x* = x^n + dt u*;
+ *              pressure Poisson equation at x*, source of Tanaka & Masunaga (2010):
+ *              lap p = (1 - gamma) rho/dt div u* - gamma rho/dt^2 (n* - n0)/n0,
+ *              or the classic number-density source (gamma = 1); u' = -dt/rho grad p;
+ *              u^{n+1} = u* + u', x^{n+1} = x* + dt u'.
+ *  free surface  fluid with n* < beta n0 has p = 0 (Dirichlet).
+ *  walls       wall particles with a fluid particle within re (gradient) take part in the
+ *              Poisson equation (wall particles); the others only add to the number density
+ *              (dummy particles).
+ *  solver      conjugate gradients with the Jacobi preconditioner on a CSR matrix assembled
+ *              each step (src/mps/sparse.c); the matrix of both systems is symmetric positive
+ *              definite because lambda and n0 are constants of the lattice. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mps/small.h"
+#include "mps/sparse.h"
+#include "ryushi/mps.h"
+#include "ryushi/surface_tension.h"
+
+enum { SRC_MIXED, SRC_NUMBER_DENSITY };
+enum { VISC_EXPLICIT, VISC_IMPLICIT, VISC_NONE };
+enum { GRAD_CORRECTED, GRAD_STANDARD };
+
+/* Roles in the pressure Poisson equation. */
+enum { ROLE_FLUID = 0, ROLE_SURFACE = 1, ROLE_WALL = 2, ROLE_DUMMY = 3 };
+
+typedef struct mps {
+    double re_g, re_l, re_max; /* radii: gradient/divergence/number density, Laplacian */
+    double n0g, n0l, lambda;   /* lattice constants */
+    double beta;               /* free-surface threshold */
+    double wall_reach;         /* wall particles this close to a fluid one are in the PPE */
+    int source, visc, grad;    /* options */
+    double gamma;              /* weight of the number-density term of the source */
+    double alpha;              /* compressibility [1/Pa] */
+    double tol, vtol;          /* solver tolerances (pressure, viscosity) */
+    long max_iter;
+    int clamp;             /* negative pressures set to zero */
+    int pmin_on;           /* gradient with the neighbourhood's least pressure (eq. 5) */
+    int wall_extrapolate;  /* wall pressure for the gradient extrapolated from the fluid */
+    double coll_r, coll_e; /* artificial repulsion: distance, restitution */
+    int dilate;            /* number-density source also for n* < n0 (else compression only) */
+    ry_surface_tension st;
+    int f_nd, f_surf, f_vs[3]; /* fields */
+    ry_csr A;
+    int32_t *unk; /* unknown index per particle, -1 if none */
+    uint8_t *role;
+    double *b, *xs;
+    double *pd;       /* Dirichlet pressure of the surface particles (2 n: work) */
+    int csf_pressure; /* CSF as the Laplace jump on the surface particles */
+    size_t cap;
+    int last_iters, last_viters;
+    long total_iters, steps;
+} mps;
+
+static const char *const source_names[] = {"tanaka_masunaga", "number_density", NULL};
+static const char *const visc_names[] = {"explicit", "implicit", "none", NULL};
+static const char *const grad_names[] = {"corrected", "standard", NULL};
+
+void ry_mps_lattice(int dim, double l0, double re, double *n0, double *lambda) {
+    const int K = (int)floor(re / l0 + 1e-9);
+    double s = 0, s2 = 0;
+    for (int a = -K; a <= K; ++a)
+        for (int b = -K; b <= K; ++b)
+            for (int c = (dim > 2 ? -K : 0); c <= (dim > 2 ? K : 0); ++c) {
+                if (a == 0 && b == 0 && c == 0) continue;
+                const double r2 = l0 * l0 * (double)(a * a + b * b + c * c);
+                const double w = ry_mps_weight_tamai(sqrt(r2), re);
+                s += w;
+                s2 += r2 * w;
+            }
+    *n0 = s;
+    *lambda = s2 / s;
+}
+
+static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
+    mps *M = calloc(1, sizeof *M);
+    RY_CHECK(err, M != NULL, RY_ERR_NOMEM, "out of memory");
+    *state = M;
+    const double l0 = sim->dx;
+    double reg = 2.1, rel = 3.1, beta = 0.97, gamma = 0.01, zero = 0, tol = 1e-8, vtol = 1e-10;
+    long maxit = 5000;
+    int yes = 1;
+    RY_TRY(ry_case_double(c, "scheme.re_gradient", &reg, 1.0, 6.0, &M->re_g, err));
+    RY_TRY(ry_case_double(c, "scheme.re_laplacian", &rel, 1.0, 6.0, &M->re_l, err));
+    RY_TRY(ry_case_double(c, "scheme.surface_threshold", &beta, 0.5, 1.0, &M->beta, err));
+    double reach = 1.5;
+    RY_TRY(ry_case_double(c, "scheme.wall_reach", &reach, 1.0, 6.0, &M->wall_reach, err));
+    M->wall_reach *= l0;
+    RY_TRY(ry_case_choice(c, "scheme.source", "tanaka_masunaga", source_names, &M->source, err));
+    RY_TRY(ry_case_double(c, "scheme.source_gamma", &gamma, 0.0, 1.0, &M->gamma, err));
+    if (M->source == SRC_NUMBER_DENSITY) M->gamma = 1.0;
+    RY_TRY(ry_case_double(c, "scheme.compressibility", &zero, 0.0, 1.0, &M->alpha, err));
+    RY_TRY(ry_case_choice(c, "scheme.viscosity", "explicit", visc_names, &M->visc, err));
+    RY_TRY(ry_case_choice(c, "scheme.gradient", "corrected", grad_names, &M->grad, err));
+    RY_TRY(ry_case_bool(c, "scheme.clamp_negative_pressure", &yes, &M->clamp, err));
+    int no = 0;
+    RY_TRY(ry_case_bool(c, "scheme.source_dilatation", &no, &M->dilate, err));
+    RY_TRY(ry_case_bool(c, "scheme.minimum_pressure", &yes, &M->pmin_on, err));
+    double cr = 0.85, ce = 0.2;
+    RY_TRY(ry_case_double(c, "scheme.repulsion.distance", &cr, 0.0, 1.0, &M->coll_r, err));
+    RY_TRY(ry_case_double(c, "scheme.repulsion.restitution", &ce, 0.0, 1.0, &M->coll_e, err));
+    M->coll_r *= l0;
+    RY_TRY(ry_case_bool(c, "scheme.wall_extrapolation", &yes, &M->wall_extrapolate, err));
+    RY_TRY(ry_case_double(c, "scheme.solver.tolerance", &tol, 1e-14, 1e-2, &M->tol, err));
+    RY_TRY(
+        ry_case_double(c, "scheme.solver.viscosity_tolerance", &vtol, 1e-14, 1e-2, &M->vtol, err));
+    RY_TRY(ry_case_int(c, "scheme.solver.max_iterations", &maxit, 10, 1000000, &M->max_iter, err));
+    int model;
+    double sigma = 0, rst = 3.1;
+    RY_TRY(ry_case_choice(c, "surface_tension.model", "none", ry_st_model_names, &model, err));
+    if (model != RY_ST_NONE) {
+        RY_TRY(ry_case_double(c, "surface_tension.sigma", NULL, 0.0, INFINITY, &sigma, err));
+        RY_TRY(ry_case_double(c, "surface_tension.radius", &rst, 1.5, 6.0, &rst, err));
+    }
+    if (model == RY_ST_CSF) {
+        static const char *const forms[] = {"force", "pressure", NULL};
+        RY_TRY(
+            ry_case_choice(c, "surface_tension.csf_form", "force", forms, &M->csf_pressure, err));
+    }
+    M->re_g *= l0;
+    M->re_l *= l0;
+    rst *= l0;
+    RY_TRY(ry_st_setup(&M->st, model, sim->dim, l0, rst, sigma, err));
+    M->re_max = fmax(fmax(M->re_g, M->re_l), model != RY_ST_NONE ? rst : 0.0);
+    double lam_g;
+    ry_mps_lattice(sim->dim, l0, M->re_g, &M->n0g, &lam_g);
+    ry_mps_lattice(sim->dim, l0, M->re_l, &M->n0l, &M->lambda);
+
+    ry_particles *ps = &sim->ps;
+    static const char *const vs[3] = {"vstar_x", "vstar_y", "vstar_z"};
+    for (int d = 0; d < 3; ++d)
+        RY_TRY(ry_particles_add_field(ps, vs[d], "m/s", d, 0, &M->f_vs[d], err));
+    RY_TRY(ry_particles_add_field(ps, "number_density", "1", -1, RY_FIELD_OUTPUT, &M->f_nd, err));
+    RY_TRY(ry_particles_add_field(ps, "free_surface", "1", -1, RY_FIELD_OUTPUT, &M->f_surf, err));
+    for (size_t i = 0; i < ps->n; ++i) {
+        ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
+        ps->f[RY_F_P][i] = 0;
+    }
+    return RY_OK;
+}
+
+static void mps_free(void *state) {
+    mps *M = state;
+    if (!M) return;
+    ry_csr_free(&M->A);
+    free(M->unk);
+    free(M->role);
+    free(M->b);
+    free(M->xs);
+    free(M->pd);
+    free(M);
+}
+
+static ry_status scratch(mps *M, size_t n, ry_error *err) {
+    if (M->cap >= n) return RY_OK;
+    size_t c = n + n / 4 + 16;
+    int32_t *u = realloc(M->unk, c * sizeof *u);
+    if (u) M->unk = u;
+    uint8_t *r = realloc(M->role, c * sizeof *r);
+    if (r) M->role = r;
+    double *b = realloc(M->b, 3 * c * sizeof *b);
+    if (b) M->b = b;
+    double *x = realloc(M->xs, 3 * c * sizeof *x);
+    if (x) M->xs = x;
+    double *pd = realloc(M->pd, 5 * c * sizeof *pd);
+    if (pd) M->pd = pd;
+    RY_CHECK(err, u && r && b && x && pd, RY_ERR_NOMEM, "out of memory (MPS work arrays)");
+    M->cap = c;
+    return RY_OK;
+}
+
+/* Separation x_j - x_i (minimum image) and its square length. */
+static inline double sep(const ry_sim *sim, size_t i, size_t j, double *dx) {
+    const ry_particles *ps = &sim->ps;
+    dx[0] = dx[1] = dx[2] = 0;
+    for (int d = 0; d < sim->dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+    ry_box_min_image(&sim->box, dx);
+    return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+}
+
+/* Number density (ratio n/n0) of every particle at the current positions, and the roles: free
+ * surface (p = 0) for fluid and wall particles with n < beta n0 (walls above the water line);
+ * the other wall particles with a fluid neighbour within re take part in the pressure
+ * equation, the rest are dummies. */
+static void number_density(ry_sim *sim, mps *M) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const double re = M->re_g, re2 = re * re, reach2 = M->wall_reach * M->wall_reach;
+    double *nd = ps->f[M->f_nd], *surf = ps->f[M->f_surf];
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double s = 0;
+        int fluid_near = 0;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            const double r2 = sep(sim, i, j, dx);
+            if (r2 >= re2) continue;
+            s += ry_mps_weight_tamai(sqrt(r2), re);
+            if (ps->kind[j] == RY_KIND_FLUID && r2 < reach2) fluid_near = 1;
+        }
+        nd[i] = s / M->n0g;
+        if (ps->kind[i] == RY_KIND_FLUID) {
+            M->role[i] = nd[i] < M->beta ? ROLE_SURFACE : ROLE_FLUID;
+        } else {
+            M->role[i] = !fluid_near ? ROLE_DUMMY : nd[i] < M->beta ? ROLE_SURFACE : ROLE_WALL;
+        }
+        surf[i] = M->role[i] == ROLE_SURFACE && ps->kind[i] == RY_KIND_FLUID;
+    }
+}
+
+/* Kinematic viscosity of a pair (harmonic mean: symmetric, and 0 next to an inviscid fluid). */
+static inline double pair_nu(const ry_sim *sim, size_t i, size_t j) {
+    const double a = sim->mat[sim->ps.material[i]].viscosity;
+    const double b = sim->mat[sim->ps.material[j]].viscosity;
+    return a + b > 0 ? 2.0 * a * b / (a + b) : 0.0;
+}
+
+/* a += nu lap v (explicit viscosity, eq. 7) for fluid particles; walls enter with their
+ * velocity (no slip). */
+static void viscous_explicit(ry_sim *sim, const mps *M) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    const double re = M->re_l, re2 = re * re, cl = 2.0 * dim / (M->lambda * M->n0l);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double s[3] = {0, 0, 0};
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            const double r2 = sep(sim, i, j, dx);
+            if (r2 >= re2) continue;
+            const double w = pair_nu(sim, i, j) * ry_mps_weight_tamai(sqrt(r2), re);
+            for (int d = 0; d < dim; ++d)
+                s[d] += w * (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]);
+        }
+        for (int d = 0; d < dim; ++d) ps->f[RY_F_AX + d][i] += cl * s[d];
+    }
+}
+
+/* Assembles the rows of the unknowns (unk[i] >= 0) from the Laplacian pairs: for each pair
+ * (i, j) within re_l that `couples` accepts, coefficient c w_ij on the diagonal and -c w_ij
+ * off it when j is an unknown too (pairs beyond re_l make no entry); diag_extra is added to
+ * every diagonal. coef(i, j) scales
+ * c w_ij (1 for the pressure, dt nu_ij for the viscosity). */
+typedef int (*couple_fn)(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
+                         double dt);
+static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, double dt,
+                          double diag_extra, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const double re = M->re_l, re2 = re * re, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
+    /* Row lengths (diagonal included) in parallel, their prefix sums, then the rows. */
+    RY_TRY(ry_csr_reserve(&M->A, nunk, 0, err));
+    ry_csr *A = &M->A;
+    A->row[0] = 0;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < n; ++i) {
+        if (M->unk[i] < 0) continue;
+        size_t len = 1;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            double dx[3];
+            if (M->unk[sim->nl.j[q]] >= 0 && sep(sim, i, sim->nl.j[q], dx) < re2) len += 1;
+        }
+        A->row[(size_t)M->unk[i] + 1] = len;
+    }
+    for (size_t k = 0; k < nunk; ++k) A->row[k + 1] += A->row[k];
+    RY_TRY(ry_csr_reserve(&M->A, nunk, A->row[nunk], err));
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (M->unk[i] < 0) continue;
+        const size_t k = (size_t)M->unk[i];
+        size_t p = A->row[k];
+        const size_t pdiag = p++;
+        double diag = diag_extra;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3], coef = 0;
+            const double r2 = sep(sim, i, j, dx);
+            const int uj = M->unk[j] >= 0 && r2 < re2;
+            double a = 0;
+            if (r2 < re2 && couples(sim, M, i, j, &coef, dt))
+                a = cl * coef * ry_mps_weight_tamai(sqrt(r2), re);
+            diag += a;
+            if (uj) {
+                A->col[p] = (uint32_t)M->unk[j];
+                A->val[p++] = -a;
+            }
+        }
+        A->col[pdiag] = (uint32_t)k;
+        A->val[pdiag] = diag;
+        A->diag[k] = diag;
+    }
+    return RY_OK;
+}
+
+/* Pressure: pairs between unknowns and free-surface particles (p = 0); dummies are left out. */
+static int couple_pressure(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
+                           double dt) {
+    (void)sim;
+    (void)i;
+    (void)dt;
+    *coef = 1.0;
+    return M->role[j] != ROLE_DUMMY;
+}
+
+/* Viscosity: every pair; walls are known velocities. */
+static int couple_viscous(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
+                          double dt) {
+    (void)M;
+    *coef = dt * pair_nu(sim, i, j);
+    return 1;
+}
+
+/* Implicit viscosity: (1 - dt nu lap) u* = v + dt a, per component, walls as known values. */
+static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    size_t nunk = 0;
+    for (size_t i = 0; i < n; ++i) M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
+    RY_TRY(assemble(sim, M, nunk, couple_viscous, dt, 1.0, err));
+    const double re = M->re_l, re2 = re * re, cl = 2.0 * dim / (M->lambda * M->n0l);
+    M->last_viters = 0;
+    for (int d = 0; d < dim; ++d) {
+        const double *v = ps->f[RY_F_VX + d], *a = ps->f[RY_F_AX + d];
+        double *vs = ps->f[M->f_vs[d]];
+#pragma omp parallel for schedule(dynamic, 64)
+        for (size_t i = 0; i < n; ++i) {
+            if (M->unk[i] < 0) continue;
+            double rhs = v[i] + dt * a[i];
+            for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+                const uint32_t j = sim->nl.j[q];
+                if (M->unk[j] >= 0) continue;
+                double dx[3];
+                const double r2 = sep(sim, i, j, dx);
+                if (r2 >= re2) continue;
+                rhs += cl * dt * pair_nu(sim, i, j) * ry_mps_weight_tamai(sqrt(r2), re) * v[j];
+            }
+            M->b[M->unk[i]] = rhs;
+            M->xs[M->unk[i]] = v[i];
+        }
+        int it;
+        double res;
+        RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->vtol, (int)M->max_iter, &it, &res, err));
+        M->last_viters += it;
+        for (size_t i = 0; i < n; ++i)
+            if (M->unk[i] >= 0) vs[i] = M->xs[M->unk[i]];
+    }
+    return RY_OK;
+}
+
+/* Divergence of u* (eq. 6) at particle i over fluid and wall neighbours within re_g. */
+static double divergence(const ry_sim *sim, const mps *M, size_t i) {
+    const ry_particles *ps = &sim->ps;
+    const double re = M->re_g, re2 = re * re;
+    double s = 0;
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const uint32_t j = sim->nl.j[q];
+        double dx[3];
+        const double r2 = sep(sim, i, j, dx);
+        if (r2 >= re2 || r2 <= 0) continue;
+        double du = 0;
+        for (int d = 0; d < sim->dim; ++d) {
+            const double ui =
+                ps->kind[i] == RY_KIND_FLUID ? ps->f[M->f_vs[d]][i] : ps->f[RY_F_VX + d][i];
+            const double uj =
+                ps->kind[j] == RY_KIND_FLUID ? ps->f[M->f_vs[d]][j] : ps->f[RY_F_VX + d][j];
+            du += (uj - ui) * dx[d];
+        }
+        s += du / r2 * ry_mps_weight_tamai(sqrt(r2), re);
+    }
+    return sim->dim * s / M->n0g;
+}
+
+/* Wall pressure for the gradient extrapolated from the fluid (as Adami et al. 2012 do for
+ * SPH): p_w = sum_f w (p_f + rho_f g.(x_w - x_f)) / sum_f w over the fluid within re_g. Kept
+ * in the xs work array (the PPE values stay in the pressure field). */
+static void extrapolate_walls(ry_sim *sim, mps *M) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const double re = M->re_g, re2 = re * re;
+    double *pw = M->xs + n;
+    const double *p = ps->f[RY_F_P];
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        pw[i] = p[i];
+        if (M->role[i] != ROLE_WALL) continue;
+        double s = 0, sw = 0;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            const double r2 = sep(sim, i, j, dx);
+            if (ps->kind[j] != RY_KIND_FLUID || r2 >= re2) continue;
+            const double w = ry_mps_weight_tamai(sqrt(r2), re);
+            double gd = 0; /* g . (x_i - x_j) = -g . dx */
+            for (int d = 0; d < sim->dim; ++d) gd -= sim->gravity[d] * dx[d];
+            s += w * (p[j] + sim->mat[ps->material[j]].density * gd);
+            sw += w;
+        }
+        if (sw > 0) pw[i] = fmax(s / sw, 0.0);
+    }
+    for (size_t i = 0; i < n; ++i)
+        if (M->role[i] == ROLE_WALL) ps->f[RY_F_P][i] = pw[i];
+}
+
+/* Pressure Poisson equation at x*: unknowns are the inner fluid and the wall particles. */
+static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    size_t nunk = 0;
+    for (size_t i = 0; i < n; ++i)
+        M->unk[i] = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) ? (int32_t)nunk++ : -1;
+    /* Compressibility (Ikeda et al. 2001): rho alpha / dt^2 p on the diagonal, with the
+     * largest density (a bound; exact for one material). */
+    double rho_max = 0;
+    for (int m = 0; m < sim->nmat; ++m) rho_max = fmax(rho_max, sim->mat[m].density);
+    RY_TRY(assemble(sim, M, nunk, couple_pressure, dt, M->alpha * rho_max / (dt * dt), err));
+    const double *nd = ps->f[M->f_nd];
+    const double g = M->gamma;
+    /* Dirichlet values: 0, or the Laplace jump sigma kappa with CSF in pressure form. */
+    for (size_t i = 0; i < n; ++i) M->pd[i] = 0;
+    if (M->csf_pressure) ry_st_curvature(&M->st, sim, M->pd);
+    for (size_t i = 0; i < n; ++i) M->pd[i] *= M->csf_pressure ? M->st.sigma : 0.0;
+    const double rel = M->re_l, rel2 = rel * rel, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (M->unk[i] < 0) continue;
+        const double rho = sim->mat[ps->material[i]].density;
+        double b = g * rho / (dt * dt) * (M->dilate ? nd[i] - 1.0 : fmax(nd[i] - 1.0, 0.0));
+        if (g < 1.0) b -= (1.0 - g) * rho / dt * divergence(sim, M, i);
+        for (size_t q = sim->nl.offset[i]; M->csf_pressure && q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            const double r2 = sep(sim, i, j, dx);
+            if (M->role[j] == ROLE_SURFACE && r2 < rel2)
+                b += cl * ry_mps_weight_tamai(sqrt(r2), rel) * M->pd[j];
+        }
+        M->b[M->unk[i]] = b;
+        M->xs[M->unk[i]] = ps->f[RY_F_P][i];
+    }
+    int it;
+    double res;
+    RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->tol, (int)M->max_iter, &it, &res, err));
+    M->last_iters = it;
+    M->total_iters += it;
+    double *p = ps->f[RY_F_P];
+    for (size_t i = 0; i < n; ++i) {
+        double v = M->unk[i] >= 0 ? M->xs[M->unk[i]] : M->role[i] == ROLE_SURFACE ? M->pd[i] : 0.0;
+        if (M->clamp && v < 0) v = 0;
+        p[i] = v;
+    }
+    if (M->wall_extrapolate) extrapolate_walls(sim, M);
+    return RY_OK;
+}
+
+/* Pressure gradient (eq. 5) and the correction u' = -dt/rho grad p at x*: v = u* + u',
+ * x = x* + dt u'. Neighbours: fluid and wall particles (dummies carry no pressure). */
+static void correct(ry_sim *sim, mps *M, double dt) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    const double re = M->re_g, re2 = re * re;
+    const double *p = ps->f[RY_F_P];
+    double *gx = M->xs; /* dim per particle */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double pmin = p[i];
+        for (size_t q = sim->nl.offset[i]; M->pmin_on && q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            if (M->role[j] == ROLE_DUMMY || sep(sim, i, j, dx) >= re2) continue;
+            pmin = fmin(pmin, p[j]);
+        }
+        double m[3][3] = {{0}}, g[3] = {0, 0, 0}, x[3] = {0, 0, 0};
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            const double r2 = sep(sim, i, j, dx);
+            if (M->role[j] == ROLE_DUMMY || r2 >= re2 || r2 <= 0) continue;
+            const double w = ry_mps_weight_tamai(sqrt(r2), re), wr = w / r2;
+            for (int a = 0; a < dim; ++a) {
+                g[a] += wr * (p[j] - pmin) * dx[a];
+                for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
+            }
+        }
+        if (M->grad == GRAD_STANDARD || !ry_solve_small(dim, m, g, x))
+            for (int a = 0; a < dim; ++a) x[a] = dim * g[a] / M->n0g;
+        for (int a = 0; a < dim; ++a) gx[dim * i + a] = x[a];
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        const double rho = sim->mat[ps->material[i]].density;
+        for (int d = 0; d < dim; ++d) {
+            const double du = -dt / rho * gx[dim * i + d];
+            ps->f[RY_F_VX + d][i] = ps->f[M->f_vs[d]][i] + du;
+            ps->f[RY_F_X + d][i] += dt * du;
+        }
+    }
+}
+
+/* Artificial repulsion between particles closer than r_c (Lee et al. 2011 collision model in
+ * the gather form): for each approaching pair, particle i takes the share of a partially
+ * inelastic collision, dv_i = (1 + e)/2 (v_ij . n) n, n = x_ij / r, v_ij = v_j - v_i (walls
+ * count with their own velocity and do not move). Positions follow by dt dv_i. */
+static void collisions(ry_sim *sim, mps *M, double dt) {
+    if (M->coll_r <= 0) return;
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    const double rc2 = M->coll_r * M->coll_r, f = 0.5 * (1.0 + M->coll_e);
+    double *dv = M->xs; /* dim per particle */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double s[3] = {0, 0, 0};
+        if (ps->kind[i] == RY_KIND_FLUID)
+            for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+                const uint32_t j = sim->nl.j[q];
+                double dx[3];
+                const double r2 = sep(sim, i, j, dx);
+                if (r2 >= rc2 || r2 <= 0) continue;
+                double vn = 0;
+                for (int d = 0; d < dim; ++d)
+                    vn += (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]) * dx[d];
+                if (vn >= 0) continue;                                      /* separating */
+                const double mj = ps->kind[j] == RY_KIND_FLUID ? 1.0 : 2.0; /* a wall: mirror */
+                for (int d = 0; d < dim; ++d) s[d] += mj * f * vn * dx[d] / r2;
+            }
+        for (int d = 0; d < dim; ++d) dv[dim * i + d] = s[d];
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        for (int d = 0; d < dim; ++d) {
+            ps->f[RY_F_VX + d][i] += dv[dim * i + d];
+            ps->f[RY_F_X + d][i] += dt * dv[dim * i + d];
+        }
+    }
+}
+
+static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
+    mps *M = state;
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    /* Explicit part at x^n: gravity, surface tension, viscosity. */
+    RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
+    RY_TRY(scratch(M, ps->n, err));
+    size_t n = ps->n;
+    double *a[3];
+    for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
+    for (size_t i = 0; i < n; ++i)
+        for (int d = 0; d < dim; ++d) a[d][i] = ps->kind[i] == RY_KIND_FLUID ? sim->gravity[d] : 0;
+    if (!M->csf_pressure) RY_TRY(ry_st_accelerate(&M->st, sim, a, err));
+    if (M->visc == VISC_EXPLICIT) viscous_explicit(sim, M);
+    if (M->visc == VISC_IMPLICIT) {
+        RY_TRY(viscous_implicit(sim, M, dt, err));
+    } else {
+        for (size_t i = 0; i < n; ++i)
+            if (ps->kind[i] == RY_KIND_FLUID)
+                for (int d = 0; d < dim; ++d)
+                    ps->f[M->f_vs[d]][i] = ps->f[RY_F_VX + d][i] + dt * a[d][i];
+    }
+    for (size_t i = 0; i < n; ++i)
+        if (ps->kind[i] == RY_KIND_FLUID)
+            for (int d = 0; d < dim; ++d) ps->f[RY_F_X + d][i] += dt * ps->f[M->f_vs[d]][i];
+    /* Pressure at x* (the list may be rebuilt and the particles reordered). */
+    RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
+    RY_TRY(scratch(M, ps->n, err));
+    number_density(sim, M);
+    RY_TRY(pressure(sim, M, dt, err));
+    correct(sim, M, dt);
+    collisions(sim, M, dt);
+    M->steps++;
+    return RY_OK;
+}
+
+static ry_status mps_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
+    (void)err;
+    const mps *M = state;
+    const ry_particles *ps = &sim->ps;
+    const double l0 = sim->dx;
+    double v2 = 0, rho_min = INFINITY, nu_max = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double s = 0;
+        for (int d = 0; d < sim->dim; ++d) s += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        v2 = fmax(v2, s);
+    }
+    for (int m = 0; m < sim->nmat; ++m) {
+        rho_min = fmin(rho_min, sim->mat[m].density);
+        nu_max = fmax(nu_max, sim->mat[m].viscosity);
+    }
+    double g = 0;
+    for (int d = 0; d < sim->dim; ++d) g += sim->gravity[d] * sim->gravity[d];
+    g = sqrt(g);
+    double t = INFINITY;
+    if (v2 > 0) t = sim->cfl * l0 / sqrt(v2);
+    if (g > 0) t = fmin(t, sim->cfl * sqrt(l0 / g));
+    /* Capillary waves (Brackbill et al. 1992): dt < sqrt(rho l0^3 / (2 pi sigma)). */
+    if (M->st.model != RY_ST_NONE && M->st.sigma > 0)
+        t = fmin(t, sqrt(rho_min * l0 * l0 * l0 / (2 * RY_PI * M->st.sigma)));
+    if (M->visc == VISC_EXPLICIT && nu_max > 0) t = fmin(t, 0.2 * l0 * l0 / nu_max);
+    if (!isfinite(t)) t = sim->dt_max > 0 ? sim->dt_max : sim->output_interval;
+    *dt = t;
+    return RY_OK;
+}
+
+static int mps_vars(void *state, ry_state_var *v, int max) {
+    mps *M = state;
+    const ry_state_var all[] = {{"ppe_iterations", NULL, &M->last_iters, NULL},
+                                {"ppe_iterations_total", NULL, NULL, &M->total_iters},
+                                {"mps_steps", NULL, NULL, &M->steps}};
+    int k = (int)(sizeof all / sizeof all[0]);
+    if (k > max) k = max;
+    memcpy(v, all, (size_t)k * sizeof *v);
+    return k;
+}
+
+const ry_scheme_type ry_scheme_mps = {
+    "mps",    "moving particle semi-implicit (Tamai weight, Iribe gradient, PCG pressure)",
+    mps_init, mps_dt,
+    mps_step, mps_free,
+    mps_vars};
+
+int ry_mps_last_iterations(const ry_sim *sim) {
+    if (sim->scheme != &ry_scheme_mps || !sim->scheme_state) return 0;
+    return ((const mps *)sim->scheme_state)->last_iters;
+}
+
+long ry_mps_total_iterations(const ry_sim *sim) {
+    if (sim->scheme != &ry_scheme_mps || !sim->scheme_state) return 0;
+    return ((const mps *)sim->scheme_state)->total_iters;
+}
+
+/* Probes. */
+
+/* Centroid of the fluid particles; returns their number. */
+static size_t fluid_centroid(const ry_sim *sim, double *c) {
+    const ry_particles *ps = &sim->ps;
+    size_t nf = 0;
+    c[0] = c[1] = c[2] = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        for (int d = 0; d < sim->dim; ++d) c[d] += ps->f[RY_F_X + d][i];
+        ++nf;
+    }
+    for (int d = 0; d < sim->dim && nf; ++d) c[d] /= (double)nf;
+    return nf;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Width of a drop along x through its centroid: the fluid particles within 1.5 spacings of the
+ * x axis through the centroid, sorted by x; from the one nearest the centroid the body extends
+ * while neighbours are at most 3 spacings apart (particles thrown off do not count); the width
+ * is the extent of that body plus one spacing. */
+static ry_status probe_width_x(const ry_sim *sim, double *v, ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    double c[3];
+    *v = NAN;
+    if (fluid_centroid(sim, c) == 0) return RY_OK;
+    double *xs = malloc((ps->n + 1) * sizeof *xs);
+    RY_CHECK(err, xs != NULL, RY_ERR_NOMEM, "out of memory (width_x)");
+    size_t k = 0;
+    const double band = 1.5 * sim->dx;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        int in = 1;
+        for (int d = 1; d < sim->dim; ++d) in &= fabs(ps->f[RY_F_X + d][i] - c[d]) < band;
+        if (in) xs[k++] = ps->f[RY_F_X][i];
+    }
+    if (k > 0) {
+        qsort(xs, k, sizeof *xs, cmp_double);
+        size_t m = 0;
+        for (size_t q = 1; q < k; ++q)
+            if (fabs(xs[q] - c[0]) < fabs(xs[m] - c[0])) m = q;
+        size_t lo = m, hi = m;
+        while (lo > 0 && xs[lo] - xs[lo - 1] <= 3 * sim->dx) --lo;
+        while (hi + 1 < k && xs[hi + 1] - xs[hi] <= 3 * sim->dx) ++hi;
+        *v = xs[hi] - xs[lo] + sim->dx;
+    }
+    free(xs);
+    return RY_OK;
+}
+
+/* Mean pressure of the fluid particles within half the equivalent radius of the fluid's
+ * centroid (a drop: R from the fluid volume N dx^d). */
+static ry_status probe_drop_pressure(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    const ry_particles *ps = &sim->ps;
+    double c[3];
+    const size_t nf = fluid_centroid(sim, c);
+    if (nf == 0) {
+        *v = NAN;
+        return RY_OK;
+    }
+    const double vol = (double)nf * pow(sim->dx, sim->dim);
+    const double R = sim->dim == 2 ? sqrt(vol / RY_PI) : cbrt(3 * vol / (4 * RY_PI));
+    double s = 0;
+    size_t k = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double r2 = 0;
+        for (int d = 0; d < sim->dim; ++d) {
+            const double e = ps->f[RY_F_X + d][i] - c[d];
+            r2 += e * e;
+        }
+        if (r2 < 0.25 * R * R) {
+            s += ps->f[RY_F_P][i];
+            ++k;
+        }
+    }
+    *v = k ? s / (double)k : NAN;
+    return RY_OK;
+}
+
+static ry_status probe_ppe_iterations(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = ry_mps_last_iterations(sim);
+    return RY_OK;
+}
+
+const ry_probe ry_probe_width_x = {
+    "width_x",
+    "drop width along x through the fluid's centroid [m] (the body within 1.5 spacings of the "
+    "axis, particles thrown off left out, plus one spacing)",
+    probe_width_x};
+const ry_probe ry_probe_drop_pressure = {
+    "drop_pressure",
+    "mean pressure of the fluid within half the equivalent radius of its centroid [Pa]",
+    probe_drop_pressure};
+const ry_probe ry_probe_ppe_iterations = {
+    "ppe_iterations", "scheme mps: conjugate-gradient iterations of the last pressure solve",
+    probe_ppe_iterations};

@@ -1,0 +1,123 @@
+/* CSR matrix and Jacobi-preconditioned conjugate gradients (Hestenes & Stiefel 1952; the
+ * preconditioned form as in Saad, Iterative Methods for Sparse Linear Systems, alg. 9.1). */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "mps/sparse.h"
+
+static int grow(void **p, size_t *cap, size_t want, size_t size) {
+    if (*cap >= want) return 1;
+    size_t c = want + want / 4 + 16;
+    void *q = realloc(*p, c * size);
+    if (!q) return 0;
+    *p = q;
+    *cap = c;
+    return 1;
+}
+
+ry_status ry_csr_reserve(ry_csr *a, size_t n, size_t nz, ry_error *err) {
+    size_t cn = a->cap_n, cn2 = a->cap_n, cz = a->cap_nz, cz2 = a->cap_nz, cw = a->cap_work;
+    int ok = grow((void **)&a->row, &cn, n + 1, sizeof *a->row) &&
+             grow((void **)&a->diag, &cn2, n + 1, sizeof *a->diag) &&
+             grow((void **)&a->col, &cz, nz, sizeof *a->col) &&
+             grow((void **)&a->val, &cz2, nz, sizeof *a->val) &&
+             grow((void **)&a->work, &cw, 4 * n + 4, sizeof *a->work);
+    RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (sparse matrix of %zu rows, %zu entries)", n,
+             nz);
+    a->cap_n = cn < cn2 ? cn : cn2;
+    a->cap_nz = cz < cz2 ? cz : cz2;
+    a->cap_work = cw;
+    a->n = n;
+    return RY_OK;
+}
+
+void ry_csr_free(ry_csr *a) {
+    free(a->row);
+    free(a->col);
+    free(a->val);
+    free(a->diag);
+    free(a->work);
+    *a = (ry_csr){0};
+}
+
+void ry_csr_mul(const ry_csr *a, const double *x, double *y) {
+    const size_t n = a->n;
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (size_t i = 0; i < n; ++i) {
+        double s = 0;
+        for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) s += a->val[q] * x[a->col[q]];
+        y[i] = s;
+    }
+}
+
+/* Dot product in fixed blocks summed in order: the same bits for any thread count. */
+enum { DOT_BLOCK = 2048 };
+static double dot(const double *x, const double *y, size_t n) {
+    const size_t nb = (n + DOT_BLOCK - 1) / DOT_BLOCK;
+    double part[256], s = 0;
+    for (size_t b0 = 0; b0 < nb; b0 += 256) {
+        const size_t b1 = nb - b0 < 256 ? nb : b0 + 256;
+#pragma omp parallel for schedule(static) if (b1 - b0 > 1)
+        for (size_t b = b0; b < b1; ++b) {
+            const size_t i1 = (b + 1) * DOT_BLOCK < n ? (b + 1) * DOT_BLOCK : n;
+            double t = 0;
+            for (size_t i = b * DOT_BLOCK; i < i1; ++i) t += x[i] * y[i];
+            part[b - b0] = t;
+        }
+        for (size_t b = b0; b < b1; ++b) s += part[b - b0];
+    }
+    return s;
+}
+
+ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_iter, int *iters,
+                     double *resid, ry_error *err) {
+    const size_t n = a->n;
+    double *r = a->work, *z = r + n, *p = z + n, *q = p + n;
+    *iters = 0;
+    *resid = 0;
+    if (n == 0) return RY_OK;
+    const double bnorm = sqrt(dot(b, b, n));
+    if (bnorm == 0) {
+        for (size_t i = 0; i < n; ++i) x[i] = 0;
+        return RY_OK;
+    }
+    ry_csr_mul(a, x, q);
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (size_t i = 0; i < n; ++i) {
+        r[i] = b[i] - q[i];
+        z[i] = r[i] / a->diag[i];
+        p[i] = z[i];
+    }
+    double rz = dot(r, z, n), rn = sqrt(dot(r, r, n));
+    int k = 0;
+    while (rn > tol * bnorm && k < max_iter) {
+        ry_csr_mul(a, p, q);
+        const double pq = dot(p, q, n);
+        RY_CHECK(err, pq > 0 && isfinite(pq), RY_ERR_UNSTABLE,
+                 "conjugate gradients broke down after %d iterations (p.Ap = %g: the matrix is "
+                 "not positive definite)",
+                 k, pq);
+        const double alpha = rz / pq;
+#pragma omp parallel for schedule(static) if (n > 4096)
+        for (size_t i = 0; i < n; ++i) {
+            x[i] += alpha * p[i];
+            r[i] -= alpha * q[i];
+            z[i] = r[i] / a->diag[i];
+        }
+        const double rz1 = dot(r, z, n);
+        const double beta = rz1 / rz;
+        rz = rz1;
+#pragma omp parallel for schedule(static) if (n > 4096)
+        for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
+        rn = sqrt(dot(r, r, n));
+        ++k;
+    }
+    *iters = k;
+    *resid = rn / bnorm;
+    RY_CHECK(err, rn <= tol * bnorm, RY_ERR_UNSTABLE,
+             "conjugate gradients did not converge in %d iterations (relative residual %.3g, "
+             "tolerance %.3g)",
+             k, rn / bnorm, tol);
+    return RY_OK;
+}

@@ -1,0 +1,36 @@
+/* A symmetric sparse matrix in CSR form and the Jacobi-preconditioned conjugate-gradient
+ * solver of the MPS scheme (pressure Poisson equation, implicit viscosity). */
+#ifndef RYUSHI_MPS_SPARSE_H
+#define RYUSHI_MPS_SPARSE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ryushi/status.h"
+
+typedef struct ry_csr {
+    size_t n;      /* rows */
+    size_t *row;   /* n + 1 entries */
+    uint32_t *col; /* row[n] entries */
+    double *val;   /* row[n] entries */
+    double *diag;  /* n entries (also stored in the rows) */
+    size_t cap_n, cap_nz;
+    double *work; /* 4 n: residual, preconditioned residual, direction, A p */
+    size_t cap_work;
+} ry_csr;
+
+/* Makes room for n rows and nz entries (keeps nothing). */
+ry_status ry_csr_reserve(ry_csr *a, size_t n, size_t nz, ry_error *err);
+void ry_csr_free(ry_csr *a);
+
+/* y = A x (OpenMP over rows). */
+void ry_csr_mul(const ry_csr *a, const double *x, double *y);
+
+/* Solves A x = b for a symmetric positive definite A by conjugate gradients with the Jacobi
+ * (diagonal) preconditioner, from the initial x, until |b - A x| <= tol |b| (2-norms) or
+ * max_iter iterations. *iters receives the iterations, *resid the final relative residual.
+ * RY_ERR_UNSTABLE when it does not converge or breaks down. */
+ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_iter, int *iters,
+                     double *resid, ry_error *err);
+
+#endif

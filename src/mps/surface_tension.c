@@ -1,0 +1,222 @@
+/* Surface tension for particle methods: CSF (curvature from the colour function) and the
+ * potential model of Kondo et al. (2007), seed 003 eq. 9-12. See include/ryushi/surface_tension.h.
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "mps/small.h"
+#include "ryushi/surface_tension.h"
+
+const char *const ry_st_model_names[] = {"none", "csf", "potential", NULL};
+
+double ry_st_potential_f(double r, double l0, double re) {
+    return r <= re ? (r - l0) * (r - re) : 0.0;
+}
+
+double ry_st_potential_phi(double r, double l0, double re) {
+    if (r > re) return 0.0;
+    const double s = r - re;
+    return (1.0 / 3.0) * (1.5 * l0 - 0.5 * re - r) * s * s;
+}
+
+/* Largest lattice offset (in spacings) within re along one axis. */
+static int lattice_extent(double l0, double re) {
+    return (int)floor(re / l0 + 1e-9);
+}
+
+double ry_st_potential_pair_sum(int dim, double l0, double re) {
+    /* Site i of A at height -(a + 1/2) l0 (a >= 0), site j of B at +(b + 1/2) l0 (b >= 0): the
+     * normal distance is s = a + b + 1 spacings, reached by s pairs (a, b). j runs over all
+     * lateral offsets. */
+    const int K = lattice_extent(l0, re);
+    double sum = 0.0;
+    for (int s = 1; s <= K; ++s)
+        for (int u = -K; u <= K; ++u)
+            for (int v = (dim > 2 ? -K : 0); v <= (dim > 2 ? K : 0); ++v) {
+                const double r = l0 * sqrt((double)(s * s + u * u + v * v));
+                sum += s * ry_st_potential_phi(r, l0, re);
+            }
+    return sum;
+}
+
+double ry_st_potential_coefficient(int dim, double l0, double re, double sigma) {
+    const double area = dim > 2 ? l0 * l0 : l0; /* per unit depth in 2D */
+    return 2.0 * sigma * area / ry_st_potential_pair_sum(dim, l0, re);
+}
+
+/* CSF: the sum over one column of a flat half-space lattice (depths k = 1, 2, ... spacings
+ * below the top layer) of the inward sum |sum_j w(r) x_ij / r| (its normal part): it spreads
+ * the jump sigma kappa over the layers under the surface (a discrete delta function). The
+ * surface layer itself is left out: its pressure is fixed (p = 0), so a force on it would not
+ * reach the pressure inside. */
+static double csf_delta_sum(int dim, double l0, double re, double *g_top) {
+    const int K = lattice_extent(l0, re);
+    double S = 0;
+    for (int k = 0; k <= K; ++k) { /* the particle's depth */
+        double g = 0;
+        for (int s = -K; s <= K; ++s) /* s: the neighbour's depth less the particle's */
+            for (int u = -K; u <= K; ++u)
+                for (int v = (dim > 2 ? -K : 0); v <= (dim > 2 ? K : 0); ++v) {
+                    if ((s == 0 && u == 0 && v == 0) || k + s < 0) continue;
+                    const double r = l0 * sqrt((double)(s * s + u * u + v * v));
+                    if (r >= re) continue;
+                    g += ry_mps_weight_tamai(r, re) * s * l0 / r;
+                }
+        S += g;
+        if (k == 0) *g_top = g;
+    }
+    return S;
+}
+
+ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, double re,
+                      double sigma, ry_error *err) {
+    RY_CHECK(err, dim == 2 || dim == 3, RY_ERR_INPUT, "surface tension needs 2 or 3 dimensions");
+    RY_CHECK(err, l0 > 0 && re > l0 && sigma >= 0, RY_ERR_INPUT,
+             "surface tension: need spacing > 0, radius > spacing and sigma >= 0");
+    st->model = model;
+    st->dim = dim;
+    st->sigma = sigma;
+    st->l0 = l0;
+    st->re = re;
+    st->C = ry_st_potential_coefficient(dim, l0, re, sigma);
+    st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
+    return RY_OK;
+}
+
+/* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai
+ * weight) or the potential force sum_j f(r) (x_j - x_i)/r; *count receives the neighbours. */
+static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
+                    double *count) {
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim, csf = st->model == RY_ST_CSF;
+    const double re = st->re, re2 = re * re;
+    s[0] = s[1] = s[2] = 0;
+    *count = 0;
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const uint32_t j = sim->nl.j[q];
+        if (ps->kind[j] != RY_KIND_FLUID) continue;
+        double dx[3] = {0, 0, 0}, r2 = 0;
+        for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+        ry_box_min_image(&sim->box, dx);
+        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        if (r2 >= re2 || r2 <= 0) continue;
+        const double r = sqrt(r2);
+        const double f = csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re);
+        *count += csf ? f : 1.0;
+        for (int d = 0; d < dim; ++d) s[d] += f * dx[d] / r;
+    }
+}
+
+/* CSF curvature from the colour function (c = 1 on the fluid): the outward normal
+ * n = -g/|g|, g_i = sum_j w x_ij / r (the colour gradient up to a factor), where |g| exceeds a
+ * tenth of its value on a flat surface; kappa = div n by the corrected (moment-matrix) divergence
+ * over the neighbours that have a normal, exact for a linear normal field however one-sided the
+ * neighbourhood; limited to radii of two spacings and up, then averaged over the neighbours
+ * that have a normal. kappa holds 5 n doubles: kappa, then work space. */
+void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *kappa) {
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    double *nrm = kappa + n;     /* 3 per particle; NAN in [0] where there is none */
+    double *raw = kappa + 4 * n; /* the curvature before averaging */
+    const double gmin = 0.1 * st->g_top;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        nrm[3 * i] = NAN;
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double g[3], count, gn = 0;
+        st_sums(st, sim, i, g, &count);
+        for (int d = 0; d < dim; ++d) gn += g[d] * g[d];
+        gn = sqrt(gn);
+        if (gn <= gmin) continue;
+        for (int d = 0; d < 3; ++d) nrm[3 * i + d] = d < dim ? -g[d] / gn : 0.0;
+    }
+    const double re2 = st->re * st->re;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        raw[i] = 0;
+        if (isnan(nrm[3 * i])) continue;
+        double m[3][3] = {{0}}, h[3][3] = {{0}};
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            if (ps->kind[j] != RY_KIND_FLUID || isnan(nrm[3 * j])) continue;
+            double dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+            ry_box_min_image(&sim->box, dx);
+            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+            if (r2 >= re2 || r2 <= 0) continue;
+            const double wr = ry_mps_weight_tamai(sqrt(r2), st->re) / r2;
+            for (int a = 0; a < dim; ++a) {
+                const double dn = nrm[3 * j + a] - nrm[3 * i + a];
+                for (int b = 0; b < dim; ++b) {
+                    m[a][b] += wr * dx[a] * dx[b];
+                    h[a][b] += wr * dn * dx[b];
+                }
+            }
+        }
+        double div = 0, y[3];
+        int ok = 1;
+        for (int a = 0; a < dim && ok; ++a) {
+            ok = ry_solve_small(dim, m, h[a], y);
+            div += y[a];
+        }
+        /* No curvature radius below two spacings: what is sharper is not resolved. */
+        const double kmax = (dim - 1) / (2.0 * st->l0);
+        raw[i] = ok ? fmax(fmin(div, kmax), -kmax) : 0.0;
+    }
+    /* Averaged over the neighbours that have a normal (weights w, the particle itself 1). */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        kappa[i] = 0;
+        if (isnan(nrm[3 * i])) continue;
+        double ks = raw[i], ws = 1.0;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            if (ps->kind[j] != RY_KIND_FLUID || isnan(nrm[3 * j])) continue;
+            double dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+            ry_box_min_image(&sim->box, dx);
+            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+            if (r2 >= re2) continue;
+            const double w = ry_mps_weight_tamai(sqrt(r2), st->re);
+            ks += w * raw[j];
+            ws += w;
+        }
+        kappa[i] = ks / ws;
+    }
+}
+
+ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],
+                           ry_error *err) {
+    if (st->model == RY_ST_NONE || st->sigma == 0.0) return RY_OK;
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    const double l0 = st->l0, area = dim > 2 ? l0 * l0 : l0;
+    const double *m = ps->f[RY_F_MASS];
+    if (st->model == RY_ST_POTENTIAL) {
+#pragma omp parallel for schedule(dynamic, 64)
+        for (size_t i = 0; i < n; ++i) {
+            if (ps->kind[i] != RY_KIND_FLUID) continue;
+            double s[3], count;
+            st_sums(st, sim, i, s, &count);
+            for (int d = 0; d < dim; ++d) a[d][i] += st->C * s[d] / m[i];
+        }
+        return RY_OK;
+    }
+    double *kappa = malloc(5 * n * sizeof *kappa);
+    RY_CHECK(err, kappa != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
+    ry_st_curvature(st, sim, kappa);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || kappa[i] == 0.0) continue;
+        double s[3], count;
+        st_sums(st, sim, i, s, &count);
+        /* a_i = sigma kappa_i g_i l0^(d-1) / (m_i S): over a column across a flat surface the
+         * forces add up to sigma kappa l0^(d-1). */
+        const double fac = st->sigma * kappa[i] * area / (m[i] * st->delta_sum);
+        for (int d = 0; d < dim; ++d) a[d][i] += fac * s[d];
+    }
+    free(kappa);
+    return RY_OK;
+}

@@ -1,0 +1,172 @@
+/* Unit tests of the MPS building blocks: lattice constants n0 and lambda (seed eq. 4, 8), the
+ * potential model's coefficient C (seed eq. 11-12) against a hand computation, the CSF lattice
+ * constant, and the conjugate-gradient solver.
+ *
+ * Tolerances: sums of a handful of terms written out by hand, 1e-12 relative (rounding only);
+ * the hand-evaluated decimal value of the 2D pair sum, 1e-5 (its 6 printed digits); the
+ * conjugate-gradient solution of a 1D Poisson problem against its exact solution, 1e-8
+ * relative (solver tolerance 1e-12). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "mps/sparse.h"
+#include "ryushi/mps.h"
+#include "ryushi/surface_tension.h"
+
+static void assert_rel(double got, double want, double tol, const char *what) {
+    if (!(fabs(got - want) <= tol * fabs(want)))
+        fail_msg("%s: got %.15g, expected %.15g (relative tolerance %g)", what, got, want, tol);
+}
+
+/* Tamai weight on the square lattice, re = 2.1 l0: neighbours at 1 (4), sqrt 2 (4) and 2 (4). */
+static void test_lattice_constants_2d(void **state) {
+    (void)state;
+    const double l0 = 1e-4, re = 2.1 * l0;
+    const double w1 = pow(1 / 2.1 - 1, 2), w2 = pow(sqrt(2.0) / 2.1 - 1, 2),
+                 w4 = pow(2 / 2.1 - 1, 2);
+    const double n0 = 4 * (w1 + w2 + w4);
+    const double lambda = 4 * l0 * l0 * (1 * w1 + 2 * w2 + 4 * w4) / n0;
+    double n0c, lc;
+    ry_mps_lattice(2, l0, re, &n0c, &lc);
+    assert_rel(n0c, n0, 1e-12, "n0 (2D, re = 2.1 l0)");
+    assert_rel(lc, lambda, 1e-12, "lambda (2D, re = 2.1 l0)");
+}
+
+/* Eq. 11 in 2D with re = 3.1 l0, by hand: a particle of A at depth a + 1/2 and one of B at
+ * height b + 1/2 spacings are s = a + b + 1 apart normal to the split (s pairs (a, b) for each
+ * s), u spacings apart along it; pairs within 3.1 l0: s = 1, u = 0, +-1, +-2; s = 2, u = 0,
+ * +-1, +-2; s = 3, u = 0. In units of l0^3: phi(1) = -1.5435, phi(sqrt 2) = -1.38705,
+ * phi(sqrt 5) = -0.568761, phi(2) = -0.826833, phi(sqrt 8) = -0.0707622, phi(3) = -0.0101667;
+ * the sum is -9.69734. */
+static void test_potential_coefficient_2d(void **state) {
+    (void)state;
+    const double l0 = 1e-4, re = 3.1 * l0, sigma = 0.0728;
+#define PHI(r) ry_st_potential_phi((r)*l0, l0, re)
+    const double by_hand = 1 * (PHI(1) + 2 * PHI(sqrt(2.0)) + 2 * PHI(sqrt(5.0))) +
+                           2 * (PHI(2) + 2 * PHI(sqrt(5.0)) + 2 * PHI(sqrt(8.0))) + 3 * PHI(3);
+#undef PHI
+    const double l3 = l0 * l0 * l0;
+    assert_rel(ry_st_potential_phi(l0, l0, re) / l3, -1.5435, 1e-12, "phi(l0)");
+    assert_rel(ry_st_potential_phi(3 * l0, l0, re) / l3, -0.0305 / 3, 1e-12, "phi(3 l0)");
+    assert_rel(by_hand / l3, -9.69734, 1e-5, "hand sum (decimal)");
+    assert_rel(ry_st_potential_pair_sum(2, l0, re), by_hand, 1e-12, "pair sum (2D)");
+    const double C = 2 * sigma * l0 / by_hand; /* per unit depth */
+    assert_rel(ry_st_potential_coefficient(2, l0, re, sigma), C, 1e-12, "C (2D)");
+    assert_true(C < 0); /* f = -dphi/dr: a negative C makes the far pairs attract */
+    ry_surface_tension st;
+    ry_error err = {0};
+    assert_int_equal(ry_st_setup(&st, RY_ST_POTENTIAL, 2, l0, re, sigma, &err), RY_OK);
+    assert_rel(st.C, C, 1e-12, "C from ry_st_setup");
+}
+
+/* Eq. 11 in 3D by brute force over two blocks of the lattice (a different route from the
+ * library's multiplicity sum): A = one column x = y = 0, z = -1/2, -3/2, ...; B = all sites
+ * with z = +1/2, +3/2, ... */
+static void test_potential_coefficient_3d(void **state) {
+    (void)state;
+    const double l0 = 1e-4, re = 3.1 * l0, sigma = 0.0728;
+    double sum = 0;
+    for (int a = 0; a < 5; ++a)
+        for (int x = -5; x <= 5; ++x)
+            for (int y = -5; y <= 5; ++y)
+                for (int b = 0; b < 5; ++b) {
+                    const double dz = (b + 0.5) - (-a - 0.5);
+                    const double r = l0 * sqrt(x * x + y * y + dz * dz);
+                    sum += ry_st_potential_phi(r, l0, re);
+                }
+    assert_rel(ry_st_potential_pair_sum(3, l0, re), sum, 1e-12, "pair sum (3D)");
+    assert_rel(ry_st_potential_coefficient(3, l0, re, sigma), 2 * sigma * l0 * l0 / sum, 1e-12,
+               "C (3D)");
+}
+
+/* The force is minus the derivative of the potential (eq. 10 and 12), zero at r = l0. */
+static void test_potential_force_is_derivative(void **state) {
+    (void)state;
+    const double l0 = 1.0, re = 3.1, h = 1e-6;
+    for (double r = 0.5; r < 3.1 - 2 * h; r += 0.05) {
+        const double fd =
+            -(ry_st_potential_phi(r + h, l0, re) - ry_st_potential_phi(r - h, l0, re)) / (2 * h);
+        if (fabs(fd - ry_st_potential_f(r, l0, re)) > 1e-8)
+            fail_msg("r = %g: f = %.10g, -dphi/dr = %.10g", r, ry_st_potential_f(r, l0, re), fd);
+    }
+    assert_true(ry_st_potential_f(l0, l0, re) == 0.0);
+    assert_true(ry_st_potential_f(3.2, l0, re) == 0.0 && ry_st_potential_phi(3.2, l0, re) == 0.0);
+}
+
+/* CSF lattice constants in 2D, re = 3.1 l0: the inward sum sum_j w x_ij/r of a particle in the
+ * top layer of a flat surface, by hand: neighbours 1 to 3 rows down (s) and u columns across,
+ * normal component w s / r: s = 1: u = 0, +-1, +-2; s = 2: u = 0, +-1, +-2; s = 3: u = 0. */
+static void test_csf_lattice(void **state) {
+    (void)state;
+    const double l0 = 1e-4, re = 3.1e-4;
+#define W(r) ry_mps_weight_tamai((r)*l0, re)
+    const double g_top = W(1) + 2 * W(sqrt(2.0)) / sqrt(2.0) + 2 * W(sqrt(5.0)) / sqrt(5.0) + W(2) +
+                         2 * 2 * W(sqrt(5.0)) / sqrt(5.0) + 2 * 2 * W(sqrt(8.0)) / sqrt(8.0) + W(3);
+#undef W
+    ry_surface_tension st;
+    ry_error err = {0};
+    assert_int_equal(ry_st_setup(&st, RY_ST_CSF, 2, l0, re, 0.0728, &err), RY_OK);
+    assert_rel(st.g_top, g_top, 1e-12, "top-layer inward sum");
+    assert_true(st.delta_sum > st.g_top);
+    assert_int_equal(ry_st_setup(&st, RY_ST_CSF, 4, l0, re, 0.0728, &err), RY_ERR_INPUT);
+}
+
+/* -u'' = 1 on (0, 1), u(0) = u(1) = 0, by second differences on n interior points: the
+ * discrete solution is exact for a quadratic, u = x (1 - x) / 2. */
+static void test_pcg_poisson_1d(void **state) {
+    (void)state;
+    enum { n = 200 };
+    const double h = 1.0 / (n + 1);
+    ry_csr a = {0};
+    ry_error err = {0};
+    assert_int_equal(ry_csr_reserve(&a, n, 3 * n, &err), RY_OK);
+    size_t p = 0;
+    double b[n], x[n];
+    for (size_t i = 0; i < n; ++i) {
+        a.row[i] = p;
+        if (i > 0) {
+            a.col[p] = (uint32_t)(i - 1);
+            a.val[p++] = -1;
+        }
+        a.col[p] = (uint32_t)i;
+        a.val[p++] = 2;
+        a.diag[i] = 2;
+        if (i + 1 < n) {
+            a.col[p] = (uint32_t)(i + 1);
+            a.val[p++] = -1;
+        }
+        b[i] = h * h;
+        x[i] = 0;
+    }
+    a.row[n] = p;
+    int it;
+    double res;
+    assert_int_equal(ry_csr_pcg(&a, b, x, 1e-12, 1000, &it, &res, &err), RY_OK);
+    for (size_t i = 0; i < n; ++i) {
+        const double xi = (i + 1) * h;
+        assert_rel(x[i], 0.5 * xi * (1 - xi), 1e-8, "CG solution");
+    }
+    assert_true(it <= n + 1 && res <= 1e-12);
+    /* Too few iterations: an error naming the residual. */
+    for (size_t i = 0; i < n; ++i) x[i] = 0;
+    assert_int_equal(ry_csr_pcg(&a, b, x, 1e-12, 5, &it, &res, &err), RY_ERR_UNSTABLE);
+    assert_non_null(strstr(err.msg, "did not converge"));
+    ry_csr_free(&a);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lattice_constants_2d),
+        cmocka_unit_test(test_potential_coefficient_2d),
+        cmocka_unit_test(test_potential_coefficient_3d),
+        cmocka_unit_test(test_potential_force_is_derivative),
+        cmocka_unit_test(test_csf_lattice),
+        cmocka_unit_test(test_pcg_poisson_1d),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
