@@ -4,6 +4,7 @@
 
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
+#include "sph/iisph.h"
 
 static ry_status probe_mass(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
@@ -140,6 +141,22 @@ static ry_status probe_fluid_particles(const ry_sim *sim, double *v, ry_error *e
     return RY_OK;
 }
 
+/* IISPH pressure-solve iterations: of the last step, and the mean over the run so far. */
+static ry_status probe_iisph_iters(const ry_sim *sim, double *v, ry_error *err) {
+    double last, mean;
+    RY_CHECK(err, ry_iisph_iterations(sim, &last, &mean), RY_ERR_INPUT,
+             "measurement 'iisph_iterations' needs scheme iisph");
+    *v = last;
+    return RY_OK;
+}
+static ry_status probe_iisph_iters_mean(const ry_sim *sim, double *v, ry_error *err) {
+    double last, mean;
+    RY_CHECK(err, ry_iisph_iterations(sim, &last, &mean), RY_ERR_INPUT,
+             "measurement 'iisph_iterations_mean' needs scheme iisph");
+    *v = mean;
+    return RY_OK;
+}
+
 static const ry_probe p_mass = {"mass", "total fluid mass [kg]", probe_mass};
 static const ry_probe p_inflow = {
     "inflow_volume", "volume that entered through inlets [m^3] (particles x dx^dim)", probe_inflow};
@@ -155,7 +172,15 @@ static const ry_probe p_front = {"front_x", "surge front position [m] (leading e
 static const ry_probe p_in_wall = {
     "in_wall", "fluid particles inside a wall (within dx/2 of a wall particle in every direction)",
     probe_in_wall};
+static const ry_probe p_iters = {"iisph_iterations",
+                                 "scheme iisph: pressure-solve iterations of the last step",
+                                 probe_iisph_iters};
+static const ry_probe p_iters_mean = {
+    "iisph_iterations_mean", "scheme iisph: mean pressure-solve iterations per step so far",
+    probe_iisph_iters_mean};
 static const ry_probe *const all_probes[] = {&p_mass,
+                                             &p_iters,
+                                             &p_iters_mean,
                                              &p_kin,
                                              &p_vmax,
                                              &p_out,

@@ -966,4 +966,4 @@ const ry_scheme_type ry_scheme_wcsph = {
     "wcsph",    "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog)",
     wcsph_init, wcsph_dt,
     wcsph_step, wcsph_free,
-    wcsph_vars};
+    wcsph_vars, NULL};
