@@ -13,7 +13,7 @@
  *                  extrapolated from the fluid (Adami, Hu & Adams 2012, eq. 27), updated
  *                  in every iteration of the solve, and the volume of the fluid particle
  *  viscosity       artificial Laplacian of seed eq. 5 with the harmonic mean of the dynamic
- *                  viscosities: a^v_i = (2 (d + 2) / m_i) sum_j V_j mu_ij
+ *                  viscosities: a^v_i = (2 (d + 2) / rho_i) sum_j V_j mu_ij
  *                  (v_ij . x_ij) / (r_ij^2 + 0.01 h^2) grad_i W_ij, mu_ij = 2 mu_i mu_j / (mu_i
  *                  + mu_j) (V_j = V_i for walls, which carry the wall velocity: no slip)
  *  surface force   colour field (multiphase.h, seed eq. 7-8)
@@ -83,7 +83,8 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         for (int m = 0; m < sim->nmat; ++m)
             if (strcmp(sim->mat[m].name, name) == 0) found = m;
         char where[256];
-        RY_CHECK(err, found >= 0, RY_ERR_INPUT, "%s: key 'scheme.colour_material': no material '%s'",
+        RY_CHECK(err, found >= 0, RY_ERR_INPUT,
+                 "%s: key 'scheme.colour_material': no material '%s'",
                  ry_case_where(c, "scheme.colour_material", where, sizeof where), name);
         s->colour.material = found;
         RY_TRY(ry_case_double(c, "scheme.normal_threshold", &eps, 0.0, 1.0, &s->colour.eps, err));
@@ -176,7 +177,8 @@ static void densities_and_forces(ry_sim *sim, iisph *s) {
                 const double f = cvis * vj * mu * vx / (P[RY_PW_R2] + eta2);
                 for (int d = 0; d < dim; ++d) a[d] += f * P[RY_PW_GX + d];
             }
-            for (int d = 0; d < dim; ++d) a[d] = a[d] / m[i] + sim->gravity[d];
+            const double inv_rho = 1.0 / (m[i] * delta[i]);
+            for (int d = 0; d < dim; ++d) a[d] = a[d] * inv_rho + sim->gravity[d];
         }
         for (int d = 0; d < 3; ++d) acc[3 * i + d] = a[d];
     }
@@ -250,8 +252,8 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
     double *p = ps->f[RY_F_P], *pnew = s->pnew;
     const double *v[3];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
-    /* Predicted number density from the predicted velocities (in the velocity field), the
-     * diagonal d_ii and a_ii. */
+        /* Predicted number density from the predicted velocities (in the velocity field), the
+         * diagonal d_ii and a_ii. */
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[kind[i]]) continue;
@@ -328,7 +330,8 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
             const double aii = s->aii[i];
             const double err = aii * p[i] + rest + s->dstar[i] - d0; /* delta - delta_0 now */
             double pn = 0;
-            if (fabs(aii) > 1e-300) pn = (1 - omega) * p[i] + omega * (d0 - s->dstar[i] - rest) / aii;
+            if (fabs(aii) > 1e-300)
+                pn = (1 - omega) * p[i] + omega * (d0 - s->dstar[i] - rest) / aii;
             pn = pn > 0 ? pn : 0;
             pnew[i] = pn;
             /* Ihmsen's average density error: clamped (free-surface) particles count only when
@@ -341,35 +344,6 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
         if (it >= s->min_iter && fabs(avg) <= s->tol) break;
     }
     s->error_last = avg;
-    if (getenv("RY_IISPH_DEBUG")) {
-        double pmax = 0, dmin = 1e300, dmax = 0, amin = 0, smax = 0;
-        for (size_t i = 0; i < n; ++i) {
-            if (kind[i] != RY_KIND_FLUID) continue;
-            pmax = fmax(pmax, p[i]);
-            dmin = fmin(dmin, delta[i] / d0);
-            dmax = fmax(dmax, delta[i] / d0);
-            amin = fmin(amin, s->aii[i]);
-            smax = fmax(smax, s->dstar[i] / d0);
-        }
-        size_t im = 0;
-        double vm = -1;
-        for (size_t i = 0; i < n; ++i) {
-            if (kind[i] != RY_KIND_FLUID) continue;
-            double u = 0;
-            for (int d = 0; d < dim; ++d) u += v[d][i] * v[d][i];
-            if (u > vm) vm = u, im = i;
-        }
-        fprintf(stderr, "vmax* %.3g at (%.4f %.4f) p %.4g delta %.4f dstar %.4f aii %.3g\n", sqrt(vm),
-                ps->f[RY_F_X][im], ps->f[RY_F_Y][im], p[im], delta[im] / d0, s->dstar[im] / d0,
-                s->aii[im]);
-        size_t ip = 0;
-        for (size_t i = 0; i < n; ++i)
-            if (kind[i] == RY_KIND_FLUID && p[i] > p[ip]) ip = i;
-        fprintf(stderr, "pmax at (%.4f %.4f) delta %.4f dstar %.4f aii %.3g\n", ps->f[RY_F_X][ip],
-                ps->f[RY_F_Y][ip], delta[ip] / d0, s->dstar[ip] / d0, s->aii[ip]);
-        fprintf(stderr, "it %ld avg %.3g pmax %.4g delta/d0 %.4f..%.4f dstar max %.4f aii min %.3g\n",
-                it, avg, pmax, dmin, dmax, smax, amin);
-    }
     return it;
 }
 
@@ -416,7 +390,8 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         [RY_KIND_FLUID] = 1, [RY_KIND_OUTLET] = 1, [RY_KIND_WALL] = 1, [RY_KIND_INLET] = 1};
     RY_TRY(ry_pair_cache_fill(&s->pc, sim, need, err));
     densities_and_forces(sim, s);
-    if (s->colour_on) RY_TRY(ry_colour_force(&s->colour, sim, &s->pc, s->delta, MOBILE, s->acc, err));
+    if (s->colour_on)
+        RY_TRY(ry_colour_force(&s->colour, sim, &s->pc, s->delta, MOBILE, s->acc, err));
     /* Predicted velocity v* = v + dt a_nonpressure. */
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[ps->kind[i]]) continue;
@@ -438,7 +413,8 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         double a[3] = {0, 0, 0};
         for (size_t q = off[i]; q < off[i + 1]; ++q) {
             const uint32_t j = nb[q];
-            const double pj = p[j] / (MOBILE[ps->kind[j]] ? delta[j] * delta[j] : delta[i] * delta[i]);
+            const double pj =
+                p[j] / (MOBILE[ps->kind[j]] ? delta[j] * delta[j] : delta[i] * delta[i]);
             const double *P = cv + q * RY_PAIR_STRIDE;
             for (int d = 0; d < dim; ++d) a[d] -= (pi + pj) * P[RY_PW_GX + d];
         }
@@ -453,22 +429,6 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         }
         amax2 = fmax(amax2, a2);
         vmax2 = fmax(vmax2, v2);
-    }
-    if (getenv("RY_IISPH_DEBUG")) {
-        double emax = 0, emin = 0;
-        for (size_t i = 0; i < n; ++i) {
-            if (ps->kind[i] != RY_KIND_FLUID || p[i] <= 0) continue;
-            double dv = 0;
-            for (size_t q = off[i]; q < off[i + 1]; ++q) {
-                const uint32_t j = nb[q];
-                for (int d = 0; d < dim; ++d)
-                    dv += (ps->f[RY_F_VX + d][i] - ps->f[RY_F_VX + d][j]) * cv[q * RY_PAIR_STRIDE + RY_PW_GX + d];
-            }
-            double e = (delta[i] + dt * dv) / s->delta0 - 1;
-            emax = fmax(emax, e);
-            emin = fmin(emin, e);
-        }
-        fprintf(stderr, "check: predicted density error of pressured particles %.3g .. %.3g\n", emin, emax);
     }
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
@@ -507,9 +467,9 @@ static int iisph_vars(void *state, ry_state_var *v, int max) {
 
 static void iisph_report(void *state, char *buf, size_t size) {
     const iisph *s = state;
-    snprintf(buf, size, "iisph_iterations_mean=%.3g iisph_iterations_last=%ld iisph_error_last=%.3g",
-             s->solves ? (double)s->iters_total / (double)s->solves : 0.0, s->iters_last,
-             s->error_last);
+    snprintf(
+        buf, size, "iisph_iterations_mean=%.3g iisph_iterations_last=%ld iisph_error_last=%.3g",
+        s->solves ? (double)s->iters_total / (double)s->solves : 0.0, s->iters_last, s->error_last);
 }
 
 int ry_iisph_iterations(const ry_sim *sim, double *last, double *mean) {
