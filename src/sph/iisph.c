@@ -95,9 +95,16 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     for (int m = 0; m < sim->nmat; ++m) s->mu[m] = sim->mat[m].density * sim->mat[m].viscosity;
     s->delta0 = ry_lattice_number_density(&sim->kernel, sim->dim, sim->dx);
     ry_particles *ps = &sim->ps;
+    int no = 0, hydro;
+    RY_TRY(ry_case_bool(c, "scheme.hydrostatic_init", &no, &hydro, err));
+    /* The first solve starts from the hydrostatic pressure (hydrostatic_init) or from zero. */
+    ry_hydrostatic_pressure(sim, ps->f[RY_F_P]);
     for (size_t i = 0; i < ps->n; ++i) {
         ps->f[RY_F_MASS][i] = sim->mat[ps->material[i]].density / s->delta0;
-        if (ps->kind[i] == RY_KIND_FLUID) ps->f[RY_F_P][i] = 0;
+        if (!hydro || ps->kind[i] != RY_KIND_FLUID) ps->f[RY_F_P][i] = 0;
+        /* the warm start scales the previous pressure: undo it for the first step */
+        else if (s->warm > 0)
+            ps->f[RY_F_P][i] /= s->warm;
         ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
     }
     /* Incompressible: densities stay within the tolerance inside the fluid (summation density

@@ -24,9 +24,8 @@ double ry_colour_dt(const ry_colour *cf, const ry_sim *sim) {
     return 0.25 * sqrt(rho * h * h * h / (2.0 * 3.14159265358979323846 * cf->sigma));
 }
 
-ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc,
-                          const double *delta, const int mobile[RY_KIND_COUNT], double *acc,
-                          ry_error *err) {
+ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, const double *delta,
+                          const int mobile[RY_KIND_COUNT], double *acc, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;

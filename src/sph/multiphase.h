@@ -32,9 +32,8 @@ void ry_colour_free(ry_colour *cf);
 
 /* Adds the interfacial acceleration to acc[3 i + d] of the fluid particles (mobile[kind] set),
  * given their number density delta and the pair cache of the current step. */
-ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc,
-                          const double *delta, const int mobile[RY_KIND_COUNT], double *acc,
-                          ry_error *err);
+ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, const double *delta,
+                          const int mobile[RY_KIND_COUNT], double *acc, ry_error *err);
 
 /* Largest stable time step for surface tension (Brackbill et al. 1992):
  * dt <= 0.25 sqrt(rho_min h^3 / (2 pi sigma)). */

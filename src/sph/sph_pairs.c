@@ -70,3 +70,27 @@ double ry_lattice_number_density(const ry_kernel *k, int dim, double dx) {
             }
     return s;
 }
+
+void ry_hydrostatic_pressure(const ry_sim *sim, double *p) {
+    const ry_particles *ps = &sim->ps;
+    double g2 = 0, up[3] = {0, 0, 0};
+    for (size_t i = 0; i < ps->n; ++i) p[i] = 0;
+    for (int d = 0; d < sim->dim; ++d) g2 += sim->gravity[d] * sim->gravity[d];
+    if (g2 <= 0) return;
+    const double g = sqrt(g2);
+    for (int d = 0; d < sim->dim; ++d) up[d] = -sim->gravity[d] / g;
+    double top = -INFINITY;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double z = 0;
+        for (int d = 0; d < sim->dim; ++d) z += up[d] * ps->f[RY_F_X + d][i];
+        top = fmax(top, z);
+    }
+    top += 0.5 * sim->dx;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double z = 0;
+        for (int d = 0; d < sim->dim; ++d) z += up[d] * ps->f[RY_F_X + d][i];
+        p[i] = sim->mat[ps->material[i]].density * g * (top - z);
+    }
+}

@@ -24,4 +24,9 @@ void ry_pair_cache_free(ry_pair_cache *pc);
  * value sum_j W_ij of a particle inside a uniform fluid at the initial spacing. */
 double ry_lattice_number_density(const ry_kernel *k, int dim, double dx);
 
+/* Hydrostatic pressure of every fluid particle, p = rho0 |g| (top - z) along the upward
+ * direction -g/|g|, the free surface half a spacing above the highest fluid particle; p is 0
+ * for other kinds and everywhere without gravity. p has ps.n entries. */
+void ry_hydrostatic_pressure(const ry_sim *sim, double *p);
+
 #endif
