@@ -11,4 +11,7 @@ int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int
 int ry_cli_validate_plate(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *failures);
 
+/* IISPH and two-phase validation (validate_iisph.c). */
+int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *failures);
+
 #endif

@@ -34,7 +34,7 @@ static void usage(FILE *fp) {
             "        set the case up and report particles, memory and methods without running\n"
             "  ryushi bench neighbors [--quick] [--threads N]\n"
             "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
-            "  ryushi validate [dam_break|cavity|channel|cantilever|plate|buckling|all] [--quick]\n"
+            "  ryushi validate [dam_break|cavity|channel|cantilever|plate|buckling|iisph|all] [--quick]\n"
             "        [-o DIR] [--threads N]\n"
             "        run the validation cases against their references, with plots\n"
             "        (default output folder out/validate)\n"

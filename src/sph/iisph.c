@@ -89,7 +89,11 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         s->colour.material = found;
         RY_TRY(ry_case_double(c, "scheme.normal_threshold", &eps, 0.0, 1.0, &s->colour.eps, err));
     }
-    if (s->colour_on) RY_TRY(ry_colour_init(&s->colour, sim, err));
+    if (s->colour_on) {
+        const int a = s->colour.material, b = a == 0 && sim->nmat > 1 ? 1 : 0;
+        s->colour.rho_bar = 0.5 * (sim->mat[a].density + sim->mat[b].density);
+        RY_TRY(ry_colour_init(&s->colour, sim, err));
+    }
     s->mu = calloc((size_t)sim->nmat, sizeof *s->mu);
     RY_CHECK(err, s->mu != NULL, RY_ERR_NOMEM, "out of memory");
     for (int m = 0; m < sim->nmat; ++m) s->mu[m] = sim->mat[m].density * sim->mat[m].viscosity;

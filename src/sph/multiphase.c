@@ -5,8 +5,10 @@
 #include <stdlib.h>
 
 ry_status ry_colour_init(ry_colour *cf, ry_sim *sim, ry_error *err) {
-    RY_TRY(ry_particles_add_field(&sim->ps, "colour", "1", -1, 0, &cf->f_colour, err));
-    RY_TRY(ry_particles_add_field(&sim->ps, "curvature", "1/m", -1, 0, &cf->f_curvature, err));
+    RY_TRY(
+        ry_particles_add_field(&sim->ps, "colour", "1", -1, RY_FIELD_OUTPUT, &cf->f_colour, err));
+    RY_TRY(ry_particles_add_field(&sim->ps, "curvature", "1/m", -1, RY_FIELD_OUTPUT,
+                                  &cf->f_curvature, err));
     return RY_OK;
 }
 
@@ -102,7 +104,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         if (den <= 0) continue;
         const double k = dim * num / den;
         kap[i] = k;
-        const double f = sigma * k / (delta[i] * ps->f[RY_F_MASS][i]);
+        const double f = sigma * k / cf->rho_bar;
         for (int d = 0; d < dim; ++d) acc[3 * i + d] += f * ni[d];
     }
     return RY_OK;

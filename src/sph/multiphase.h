@@ -9,7 +9,11 @@
  *                                         / sum_j V_j |x_ij| |grad_i W_ij|
  *               over the neighbours with a reliable normal, |n| > eps / h (Morris 2000)
  *  force        F_i = (1 / delta_i) sigma kappa_i n_i                          (seed eq. 7)
- *               acceleration F_i / m_i. */
+ *               with Brackbill's density scaling: the force per volume sigma kappa n is
+ *               weighted by 2 rho_i / (rho_a + rho_b) (rho_a, rho_b the two reference
+ *               densities), so that both phases get the same acceleration
+ *               sigma kappa n / rhobar, rhobar = (rho_a + rho_b) / 2: a light phase (air) is not
+ *               kicked by the force the heavy side needs. */
 #ifndef RYUSHI_SPH_MULTIPHASE_H
 #define RYUSHI_SPH_MULTIPHASE_H
 
@@ -20,6 +24,7 @@ typedef struct ry_colour {
     int material;    /* the colour material (c = 1) */
     double sigma;    /* interfacial tension [N/m] */
     double eps;      /* normal threshold |n| h > eps */
+    double rho_bar;  /* mean reference density of the two phases */
     int f_colour;    /* particle field: smoothed colour c' */
     int f_curvature; /* particle field: curvature [1/m] */
     double *nrm;     /* 3 x n: normals */
