@@ -122,6 +122,17 @@ static int inside_across(const ry_open_boundary *b, const double *x, int dim) {
     return 1;
 }
 
+/* An outlet particle that has left its zone sideways (downstream of the entrance, outside the
+ * cross-section but within one zone length of it): removed as if it had left downstream. */
+static int left_sideways(const ry_open_boundary *b, const double *x, int dim) {
+    if (inside_across(b, x, dim) || past(b, x, b->sign > 0 ? b->lo[b->axis] : b->hi[b->axis]) < 0)
+        return 0;
+    const double len = b->hi[b->axis] - b->lo[b->axis];
+    for (int d = 0; d < dim; ++d)
+        if (d != b->axis && (x[d] < b->lo[d] - len || x[d] > b->hi[d] + len)) return 0;
+    return 1;
+}
+
 ry_status ry_open_update(ry_sim *sim, ry_error *err) {
     if (sim->nopen == 0) return RY_OK;
     ry_particles *ps = &sim->ps;
@@ -150,6 +161,18 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 ps->kind[i] = RY_KIND_FLUID;
                 for (int d = 0; d < dim; ++d) ps->f[RY_F_AX + d][i] = 0;
                 ps->f[RY_F_DRHO][i] = 0;
+                b->count++;
+                break;
+            }
+            if (b->type == RY_OPEN_OUTLET && ps->kind[i] == RY_KIND_OUTLET &&
+                left_sideways(b, x, dim)) {
+                if (!remove) remove = calloc(n, 1);
+                if (!remove) {
+                    st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+                    goto done;
+                }
+                remove[i] = 1;
+                nremove++;
                 b->count++;
                 break;
             }
