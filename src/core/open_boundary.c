@@ -122,8 +122,9 @@ static int inside_across(const ry_open_boundary *b, const double *x, int dim) {
     return 1;
 }
 
-/* An outlet particle that has left its zone sideways (downstream of the entrance, outside the
- * cross-section but within one zone length of it): removed as if it had left downstream. */
+/* An outlet (or fluid) particle that has left the zone sideways (downstream of the entrance,
+ * outside the cross-section but within one zone length of it): removed as if it had left
+ * downstream. */
 static int left_sideways(const ry_open_boundary *b, const double *x, int dim) {
     if (inside_across(b, x, dim) || past(b, x, b->sign > 0 ? b->lo[b->axis] : b->hi[b->axis]) < 0)
         return 0;
@@ -164,7 +165,8 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 b->count++;
                 break;
             }
-            if (b->type == RY_OPEN_OUTLET && ps->kind[i] == RY_KIND_OUTLET &&
+            if (b->type == RY_OPEN_OUTLET &&
+                (ps->kind[i] == RY_KIND_OUTLET || ps->kind[i] == RY_KIND_FLUID) &&
                 left_sideways(b, x, dim)) {
                 if (!remove) remove = calloc(n, 1);
                 if (!remove) {

@@ -37,8 +37,8 @@ static const ry_scheme_type scheme_static = {
     static_step, static_free,
     NULL,        NULL};
 
-static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &ry_scheme_iisph, &ry_scheme_solid,
-                                                    &scheme_static, NULL};
+static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &ry_scheme_iisph,
+                                                    &ry_scheme_solid, &scheme_static, NULL};
 
 const ry_scheme_type *const *ry_schemes(void) {
     return all_schemes;
