@@ -165,9 +165,22 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 b->count++;
                 break;
             }
-            if (b->type == RY_OPEN_OUTLET &&
-                (ps->kind[i] == RY_KIND_OUTLET || ps->kind[i] == RY_KIND_FLUID) &&
-                left_sideways(b, x, dim)) {
+            if (b->type != RY_OPEN_OUTLET) continue;
+            const int across = inside_across(b, x, dim);
+            if (across && ps->kind[i] == RY_KIND_FLUID && past(b, x, upstream) >= 0 &&
+                past(b, x, downstream) < 0) {
+                ps->kind[i] = RY_KIND_OUTLET;
+                ps->f[RY_F_P][i] = b->pressure;
+                ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
+                break;
+            }
+            /* Removed: an outlet particle past the downstream face, or an outlet or fluid
+             * particle that left the zone sideways. */
+            const int gone =
+                (across && ps->kind[i] == RY_KIND_OUTLET && past(b, x, downstream) >= 0) ||
+                ((ps->kind[i] == RY_KIND_OUTLET || ps->kind[i] == RY_KIND_FLUID) &&
+                 left_sideways(b, x, dim));
+            if (gone) {
                 if (!remove) remove = calloc(n, 1);
                 if (!remove) {
                     st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
@@ -177,26 +190,6 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 nremove++;
                 b->count++;
                 break;
-            }
-            if (b->type == RY_OPEN_OUTLET && inside_across(b, x, dim)) {
-                if (ps->kind[i] == RY_KIND_FLUID && past(b, x, upstream) >= 0 &&
-                    past(b, x, downstream) < 0) {
-                    ps->kind[i] = RY_KIND_OUTLET;
-                    ps->f[RY_F_P][i] = b->pressure;
-                    ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
-                    break;
-                }
-                if (ps->kind[i] == RY_KIND_OUTLET && past(b, x, downstream) >= 0) {
-                    if (!remove) remove = calloc(n, 1);
-                    if (!remove) {
-                        st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
-                        goto done;
-                    }
-                    remove[i] = 1;
-                    nremove++;
-                    b->count++;
-                    break;
-                }
             }
         }
     }

@@ -12,27 +12,7 @@
 #include <unistd.h>
 
 #include "ryushi/validate.h"
-
-static char root[2048], tmpdir[256];
-
-/* Runs a case into tmpdir/sub and reads its series (sim kept when keep is set). */
-static void run(const char *case_rel, const char *sub, int nset, const char *const *sets,
-                ry_table *series, ry_sim *keep, ry_run_stats *stats) {
-    char cp[4096], od[512], sp[600];
-    snprintf(cp, sizeof cp, "%s/%s", root, case_rel);
-    snprintf(od, sizeof od, "%s/%s", tmpdir, sub);
-    ry_sim sim;
-    ry_error err = {0};
-    ry_status st = ry_run_case_file(cp, nset, sets, od, &sim, stats, &err);
-    if (st != RY_OK) fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(st, RY_OK);
-    snprintf(sp, sizeof sp, "%s/series.csv", od);
-    assert_int_equal(ry_table_read(series, sp, &err), RY_OK);
-    if (keep)
-        *keep = sim;
-    else
-        ry_sim_free(&sim);
-}
+#include "run_case.h"
 
 /* Water at rest in a tank (cases/hydrostatic_iisph.yaml, H = 0.2 m, dx = 5 mm, started with
  * zero pressure): after 0.5 s the pressure of the lowest fluid layer, away from the side walls,
@@ -46,7 +26,7 @@ static void test_hydrostatic(void **state) {
     ry_sim sim;
     ry_run_stats stats;
     ry_table s;
-    run("cases/hydrostatic_iisph.yaml", "hydro", 3, sets, &s, &sim, &stats);
+    run_case("cases/hydrostatic_iisph.yaml", "hydro", 3, sets, &s, &sim, &stats);
     const double H = 0.2, g = 9.81, M = 1000.0 * 0.4 * H;
     double psum = 0, ysum = 0;
     int count = 0;
@@ -85,7 +65,7 @@ static void test_martin_moyce(void **state) {
     const char *sets[] = {"time.end=0.18", "time.output_interval=0.001", "output.vtk=false"};
     ry_table s, ref;
     ry_run_stats stats;
-    run("cases/dam_break_mm_iisph.yaml", "mm", 3, sets, &s, NULL, &stats);
+    run_case("cases/dam_break_mm_iisph.yaml", "mm", 3, sets, &s, NULL, &stats);
     char rp[4096];
     ry_error err;
     snprintf(rp, sizeof rp, "%s/data/reference/martin_moyce1952_n2_2_surge_front_table2.csv", root);
@@ -122,8 +102,8 @@ static void test_stacked(void **state) {
         ry_sim sim;
         ry_run_stats stats;
         ry_table s;
-        run("cases/stacked_fluids.yaml", k ? "stacked_air" : "stacked_oil", k ? 5 : 3, sets, &s,
-            &sim, &stats);
+        run_case("cases/stacked_fluids.yaml", k ? "stacked_air" : "stacked_oil", k ? 5 : 3, sets,
+                 &s, &sim, &stats);
         const double M = ry_column_max(&s, "mass"), g = 9.81, H = 0.2;
         const double ke = ry_column_max_from(&s, "kinetic_energy", 0.5) / (M * g * H);
         const double band = ry_band_max_speed(&sim, 1, 0.08, 0.12);
@@ -151,7 +131,7 @@ static void test_square_drop(void **state) {
     ry_sim sim;
     ry_run_stats stats;
     ry_table s;
-    run("cases/square_drop.yaml", "drop", 2, sets, &s, &sim, &stats);
+    run_case("cases/square_drop.yaml", "drop", 2, sets, &s, &sim, &stats);
     const double R = 0.4 / sqrt(3.14159265358979323846), c[2] = {0.5, 0.5};
     const double dp = ry_pressure_jump(&sim, c, 0.5 * R, 1.5 * R);
     printf("square drop: pressure jump %.3f Pa, sigma/R %.3f Pa (%+.2f %%), max speed %.4f m/s, "

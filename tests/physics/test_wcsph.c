@@ -14,8 +14,7 @@
 #include <unistd.h>
 
 #include "ryushi/validate.h"
-
-static char root[2048], tmpdir[256];
+#include "run_case.h"
 
 static void path(char *buf, size_t size, const char *rel) {
     snprintf(buf, size, "%s/%s", root, rel);
@@ -24,21 +23,7 @@ static void path(char *buf, size_t size, const char *rel) {
 /* Runs a case into tmpdir/sub and reads its series. */
 static void run(const char *case_rel, const char *sub, int nset, const char *const *sets,
                 ry_table *series, ry_sim *keep) {
-    char cp[4096], od[512], sp[600];
-    path(cp, sizeof cp, case_rel);
-    snprintf(od, sizeof od, "%s/%s", tmpdir, sub);
-    ry_sim sim;
-    ry_run_stats stats;
-    ry_error err = {0};
-    ry_status st = ry_run_case_file(cp, nset, sets, od, &sim, &stats, &err);
-    if (st != RY_OK) fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(st, RY_OK);
-    snprintf(sp, sizeof sp, "%s/series.csv", od);
-    assert_int_equal(ry_table_read(series, sp, &err), RY_OK);
-    if (keep)
-        *keep = sim;
-    else
-        ry_sim_free(&sim);
+    run_case(case_rel, sub, nset, sets, series, keep, NULL);
 }
 
 /* Martin & Moyce column at a/20: the surge front within 0.30 (max) and 0.20 (RMS) of the
