@@ -48,6 +48,8 @@ typedef struct ry_scheme_type {
     /* Optional: lists up to max state variables (returns how many). Everything else a scheme
      * keeps must be either a particle field or derivable from the fields. */
     int (*state_vars)(void *state, ry_state_var *vars, int max);
+    /* Optional: a line of `key=value` statistics for the run summary (e.g. solver iterations). */
+    void (*report)(void *state, char *buf, size_t size);
 } ry_scheme_type;
 
 /* Memory per particle of a set-up simulation: particle fields, cells, neighbour list and the

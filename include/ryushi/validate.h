@@ -47,6 +47,16 @@ typedef struct ry_oscillation {
 } ry_oscillation;
 ry_oscillation ry_series_oscillation(const ry_table *series, const char *name);
 
+/* Largest value of a column over the rows with t >= t0; NAN when absent. */
+double ry_column_max_from(const ry_table *series, const char *name, double t0);
+
+/* Static drop: mean pressure of the fluid particles within r_in of centre minus that of the
+ * fluid particles farther than r_out (2D: x, y; 3D: x, y, z). NAN when either set is empty. */
+double ry_pressure_jump(const ry_sim *sim, const double *centre, double r_in, double r_out);
+
+/* Largest speed of the fluid particles whose coordinate `axis` lies in [lo, hi]. */
+double ry_band_max_speed(const ry_sim *sim, int axis, double lo, double hi);
+
 /* Cavity centrelines against Ghia et al.: the case's profiles `u_vertical_centreline` (u along
  * x = L/2, bottom to top) and `v_horizontal_centreline` (v along y = L/2, left to right), time
  * averaged when they have average_from, interpolated at the reference's y/L and x/L, for a

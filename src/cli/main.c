@@ -34,7 +34,8 @@ static void usage(FILE *fp) {
             "        set the case up and report particles, memory and methods without running\n"
             "  ryushi bench neighbors [--quick] [--threads N]\n"
             "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
-            "  ryushi validate [dam_break|cavity|channel|cantilever|plate|buckling|all] [--quick]\n"
+            "  ryushi validate [dam_break|cavity|channel|cantilever|plate|buckling|iisph|eye|all] "
+            "[--quick]\n"
             "        [-o DIR] [--threads N]\n"
             "        run the validation cases against their references, with plots\n"
             "        (default output folder out/validate)\n"
@@ -209,10 +210,16 @@ static int cmd_run(int argc, char **argv) {
     st = ry_sim_run(&sim, &hooks, &stats, &err);
     if (pc.tty) fprintf(stderr, "\n");
     if (st != RY_OK) rc = fail(&err);
+    char scheme_stats[256] = "";
+    if (sim.scheme && sim.scheme->report) {
+        scheme_stats[0] = ' ';
+        sim.scheme->report(sim.scheme_state, scheme_stats + 1, sizeof scheme_stats - 1);
+    }
     printf("summary status=%s steps=%ld particles=%zu t=%.6g wall_s=%.3f "
-           "particle_steps_per_s=%.4g threads=%d outputs=%d output=%s\n",
+           "particle_steps_per_s=%.4g threads=%d%s outputs=%d output=%s\n",
            st == RY_OK ? "ok" : ry_status_name(st), stats.steps, sim.ps.n, sim.t, stats.wall_s,
-           stats.particle_steps_per_s, omp_get_max_threads(), sim.output_index, sim.out_dir);
+           stats.particle_steps_per_s, omp_get_max_threads(), scheme_stats, sim.output_index,
+           sim.out_dir);
     ry_sim_free(&sim);
     ry_case_free(c);
     free(a.sets);

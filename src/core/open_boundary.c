@@ -122,6 +122,18 @@ static int inside_across(const ry_open_boundary *b, const double *x, int dim) {
     return 1;
 }
 
+/* An outlet (or fluid) particle that has left the zone sideways (downstream of the entrance,
+ * outside the cross-section but within one zone length of it): removed as if it had left
+ * downstream. */
+static int left_sideways(const ry_open_boundary *b, const double *x, int dim) {
+    if (inside_across(b, x, dim) || past(b, x, b->sign > 0 ? b->lo[b->axis] : b->hi[b->axis]) < 0)
+        return 0;
+    const double len = b->hi[b->axis] - b->lo[b->axis];
+    for (int d = 0; d < dim; ++d)
+        if (d != b->axis && (x[d] < b->lo[d] - len || x[d] > b->hi[d] + len)) return 0;
+    return 1;
+}
+
 ry_status ry_open_update(ry_sim *sim, ry_error *err) {
     if (sim->nopen == 0) return RY_OK;
     ry_particles *ps = &sim->ps;
@@ -153,25 +165,31 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 b->count++;
                 break;
             }
-            if (b->type == RY_OPEN_OUTLET && inside_across(b, x, dim)) {
-                if (ps->kind[i] == RY_KIND_FLUID && past(b, x, upstream) >= 0 &&
-                    past(b, x, downstream) < 0) {
-                    ps->kind[i] = RY_KIND_OUTLET;
-                    ps->f[RY_F_P][i] = b->pressure;
-                    ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
-                    break;
+            if (b->type != RY_OPEN_OUTLET) continue;
+            const int across = inside_across(b, x, dim);
+            if (across && ps->kind[i] == RY_KIND_FLUID && past(b, x, upstream) >= 0 &&
+                past(b, x, downstream) < 0) {
+                ps->kind[i] = RY_KIND_OUTLET;
+                ps->f[RY_F_P][i] = b->pressure;
+                ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
+                break;
+            }
+            /* Removed: an outlet particle past the downstream face, or an outlet or fluid
+             * particle that left the zone sideways. */
+            const int gone =
+                (across && ps->kind[i] == RY_KIND_OUTLET && past(b, x, downstream) >= 0) ||
+                ((ps->kind[i] == RY_KIND_OUTLET || ps->kind[i] == RY_KIND_FLUID) &&
+                 left_sideways(b, x, dim));
+            if (gone) {
+                if (!remove) remove = calloc(n, 1);
+                if (!remove) {
+                    st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+                    goto done;
                 }
-                if (ps->kind[i] == RY_KIND_OUTLET && past(b, x, downstream) >= 0) {
-                    if (!remove) remove = calloc(n, 1);
-                    if (!remove) {
-                        st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
-                        goto done;
-                    }
-                    remove[i] = 1;
-                    nremove++;
-                    b->count++;
-                    break;
-                }
+                remove[i] = 1;
+                nremove++;
+                b->count++;
+                break;
             }
         }
     }

@@ -4,6 +4,7 @@
 #include "ryushi/mps.h"
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
+#include "sph/iisph.h"
 #include "sph/wcsph.h"
 
 /* "static": particles stay where they are (for setting up and inspecting geometry). */
@@ -35,10 +36,10 @@ static const ry_scheme_type scheme_static = {
     "static",    "particles do not move (geometry set-up and output only)",
     static_init, static_dt,
     static_step, static_free,
-    NULL};
+    NULL,        NULL};
 
-static const ry_scheme_type *const all_schemes[] = {&ry_scheme_wcsph, &ry_scheme_mps,
-                                                    &ry_scheme_solid, &scheme_static, NULL};
+static const ry_scheme_type *const all_schemes[] = {
+    &ry_scheme_wcsph, &ry_scheme_iisph, &ry_scheme_mps, &ry_scheme_solid, &scheme_static, NULL};
 
 const ry_scheme_type *const *ry_schemes(void) {
     return all_schemes;

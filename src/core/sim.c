@@ -211,7 +211,22 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
         ry_kernel_init(&sim->kernel, (ry_kernel_type)kt, sim->dim, sim->h_over_dx * sim->dx, err));
 
     double zero[3] = {0, 0, 0};
-    RY_TRY(ry_case_vector(c, "gravity", zero, sim->dim, sim->gravity, err));
+    if (ry_case_has(c, "head_position")) {
+        /* Patient head position (eye cases, 3D): gravity 9.81 m/s^2 in the eye's frame, x
+         * towards the patient's left, y superior, z anterior (out of the pupil). */
+        static const char *const pos_names[] = {"upright",   "supine",     "prone",
+                                                "left_side", "right_side", NULL};
+        static const double dir[5][3] = {{0, -1, 0}, {0, 0, -1}, {0, 0, 1}, {1, 0, 0}, {-1, 0, 0}};
+        int pos;
+        char where[256];
+        RY_CHECK(err, sim->dim == 3 && !ry_case_has(c, "gravity"), RY_ERR_INPUT,
+                 "%s: key 'head_position': needs dimension 3 and no 'gravity' key",
+                 ry_case_where(c, "head_position", where, sizeof where));
+        RY_TRY(ry_case_choice(c, "head_position", NULL, pos_names, &pos, err));
+        for (int d = 0; d < 3; ++d) sim->gravity[d] = 9.81 * dir[pos][d];
+    } else {
+        RY_TRY(ry_case_vector(c, "gravity", zero, sim->dim, sim->gravity, err));
+    }
     RY_TRY(read_materials(sim, c, err));
 
     const char **mnames = calloc((size_t)sim->nmat + 1, sizeof *mnames);

@@ -173,9 +173,11 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
 
 /* Overlapping bodies: a particle within half a spacing, in every direction, of a particle of an
  * earlier body (inside its lattice cell). Particles are binned in cells one spacing wide; a
- * match lies in the same or a neighbouring cell. body[i] is the body of particle i. */
-static ry_status check_overlaps(const ry_particles *ps, ry_case *c, const uint32_t *body, double dx,
-                                ry_error *err) {
+ * match lies in the same or a neighbouring cell. body[i] is the body of particle i; the
+ * particles of a body with skip[body] set that overlap an earlier body are removed instead (so
+ * that a fluid can fill the inside of a wall shell made from the same surface). */
+static ry_status check_overlaps(ry_particles *ps, ry_case *c, const uint32_t *body,
+                                const uint8_t *skip, double dx, ry_error *err) {
     size_t n = ps->n;
     char where[256], k[64];
     ry_cell_key *r = malloc((n ? n : 1) * sizeof *r);
@@ -195,6 +197,12 @@ static ry_status check_overlaps(const ry_particles *ps, ry_case *c, const uint32
         }
     }
     qsort(r, n, sizeof *r, ry_cell_key_cmp);
+    uint8_t *drop = calloc(n ? n : 1, 1);
+    if (!drop) {
+        free(r);
+        return ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    }
+    size_t ndrop = 0;
     const double half = 0.5 * dx * (1 - 1e-9);
     const int dz = ps->dim > 2 ? 1 : 0;
     size_t hit = SIZE_MAX, other = 0;
@@ -211,7 +219,10 @@ static ry_status check_overlaps(const ry_particles *ps, ry_case *c, const uint32
                         int near = 1;
                         for (int d = 0; d < ps->dim; ++d)
                             near &= fabs(ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j]) < half;
-                        if (near) {
+                        if (near && skip[body[i]]) {
+                            ndrop += !drop[i];
+                            drop[i] = 1;
+                        } else if (near) {
                             hit = i;
                             other = j;
                         }
@@ -219,7 +230,12 @@ static ry_status check_overlaps(const ry_particles *ps, ry_case *c, const uint32
                 }
     }
     free(r);
-    if (hit == SIZE_MAX) return RY_OK;
+    if (hit == SIZE_MAX) {
+        if (ndrop) ry_particles_remove(ps, drop);
+        free(drop);
+        return RY_OK;
+    }
+    free(drop);
     snprintf(k, sizeof k, "bodies[%u]", (unsigned)body[hit]);
     return ry_error_set(err, RY_ERR_INPUT,
                         "%s: body '%s' overlaps body 'bodies[%u]': its particle at (%g, %g%s) "
@@ -243,12 +259,21 @@ ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,
     }
     start[n] = ps->n;
     uint32_t *body = st == RY_OK ? malloc((ps->n ? ps->n : 1) * sizeof *body) : NULL;
-    if (st == RY_OK && !body) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    uint8_t *skip = st == RY_OK ? calloc(n, 1) : NULL;
+    if (st == RY_OK && (!body || !skip)) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    static const char *const overlap_names[] = {"error", "skip", NULL};
+    for (size_t b = 0; b < n && st == RY_OK; ++b) {
+        char k[64];
+        int v;
+        st = ry_case_choice(c, key(k, sizeof k, b, "overlap"), "error", overlap_names, &v, err);
+        skip[b] = (uint8_t)v;
+    }
     if (st == RY_OK) {
         for (size_t b = 0; b < n; ++b)
             for (size_t i = start[b]; i < start[b + 1]; ++i) body[i] = (uint32_t)b;
-        st = check_overlaps(ps, c, body, dx, err);
+        st = check_overlaps(ps, c, body, skip, dx, err);
     }
+    free(skip);
     free(body);
     free(start);
     return st;

@@ -5,6 +5,7 @@
 #include "ryushi/mps.h"
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
+#include "sph/iisph.h"
 
 static ry_status probe_mass(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
@@ -148,6 +149,77 @@ static ry_status probe_fluid_particles(const ry_sim *sim, double *v, ry_error *e
     return RY_OK;
 }
 
+/* Filling: fluid particles of the injected fluid (the second material; the first is the one in
+ * place at the start) over all fluid particles. */
+static ry_status probe_filled_fraction(const ry_sim *sim, double *v, ry_error *err) {
+    RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
+             "measurement 'filled_fraction' needs two materials (the second is the injected one)");
+    const ry_particles *ps = &sim->ps;
+    size_t nf = 0, ni = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        ++nf;
+        ni += ps->material[i] == 1;
+    }
+    *v = nf ? (double)ni / (double)nf : 0.0;
+    return RY_OK;
+}
+
+/* Wall wetted by the injected fluid: among the wall particles with a fluid particle within the
+ * kernel support (the wetted wall, e.g. the retina), the fraction whose nearest fluid particle
+ * is of the second material (the injected fluid, e.g. silicone oil). Uses the current
+ * neighbour list. */
+static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *err) {
+    RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
+             "measurement 'oil_wall_contact' needs two materials (the second is the injected one)");
+    const ry_particles *ps = &sim->ps;
+    if (!sim->nl.offset || sim->nl.n != ps->n) {
+        *v = NAN;
+        return RY_OK;
+    }
+    const double rad2 = sim->kernel.radius * sim->kernel.radius;
+    size_t wet = 0, oil = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_WALL) continue;
+        double best = rad2;
+        int mat = -1;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            if (ps->kind[j] != RY_KIND_FLUID) continue;
+            double r2 = 0;
+            for (int d = 0; d < sim->dim; ++d) {
+                const double dx = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
+                r2 += dx * dx;
+            }
+            if (r2 < best) {
+                best = r2;
+                mat = ps->material[j];
+            }
+        }
+        if (mat < 0) continue;
+        ++wet;
+        oil += mat == 1;
+    }
+    *v = wet ? (double)oil / (double)wet : 0.0;
+    return RY_OK;
+}
+
+/* IISPH pressure-solve iterations: of the last step, and the mean over the run so far. */
+static ry_status probe_iisph_iters(const ry_sim *sim, double *v, ry_error *err) {
+    double last, mean;
+    RY_CHECK(err, ry_iisph_iterations(sim, &last, &mean), RY_ERR_INPUT,
+             "measurement 'iisph_iterations' needs scheme iisph");
+    *v = last;
+    return RY_OK;
+}
+static ry_status probe_iisph_iters_mean(const ry_sim *sim, double *v, ry_error *err) {
+    double last, mean;
+    RY_CHECK(err, ry_iisph_iterations(sim, &last, &mean), RY_ERR_INPUT,
+             "measurement 'iisph_iterations_mean' needs scheme iisph");
+    *v = mean;
+    return RY_OK;
+}
+
 static const ry_probe p_mass = {"mass", "total fluid mass [kg]", probe_mass};
 static const ry_probe p_inflow = {
     "inflow_volume", "volume that entered through inlets [m^3] (particles x dx^dim)", probe_inflow};
@@ -163,7 +235,24 @@ static const ry_probe p_front = {"front_x", "surge front position [m] (leading e
 static const ry_probe p_in_wall = {
     "in_wall", "fluid particles inside a wall (within dx/2 of a wall particle in every direction)",
     probe_in_wall};
+static const ry_probe p_iters = {"iisph_iterations",
+                                 "scheme iisph: pressure-solve iterations of the last step",
+                                 probe_iisph_iters};
+static const ry_probe p_iters_mean = {
+    "iisph_iterations_mean", "scheme iisph: mean pressure-solve iterations per step so far",
+    probe_iisph_iters_mean};
+static const ry_probe p_filled = {
+    "filled_fraction", "fluid particles of the second (injected) material over all fluid particles",
+    probe_filled_fraction};
+static const ry_probe p_oil_wall = {
+    "oil_wall_contact",
+    "fraction of the wetted wall whose nearest fluid particle is of the second material",
+    probe_oil_wall_contact};
 static const ry_probe *const all_probes[] = {&p_mass,
+                                             &p_filled,
+                                             &p_oil_wall,
+                                             &p_iters,
+                                             &p_iters_mean,
                                              &p_kin,
                                              &p_vmax,
                                              &p_out,

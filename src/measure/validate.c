@@ -244,3 +244,49 @@ ry_drop_periods ry_drop_periods_measure(const ry_table *series, const char *name
     free(w);
     return out;
 }
+
+double ry_column_max_from(const ry_table *series, const char *name, double t0) {
+    const int c = ry_table_col(series, name), ct = ry_table_col(series, "t");
+    if (c < 0 || ct < 0) return NAN;
+    double m = -INFINITY;
+    for (size_t r = 0; r < series->nrows; ++r)
+        if (series->data[r * series->ncols + ct] >= t0)
+            m = fmax(m, series->data[r * series->ncols + c]);
+    return m;
+}
+
+double ry_pressure_jump(const ry_sim *sim, const double *centre, double r_in, double r_out) {
+    const ry_particles *ps = &sim->ps;
+    double sin = 0, sout = 0;
+    long nin = 0, nout = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double r2 = 0;
+        for (int d = 0; d < sim->dim; ++d) {
+            const double dx = ps->f[RY_F_X + d][i] - centre[d];
+            r2 += dx * dx;
+        }
+        if (r2 < r_in * r_in) {
+            sin += ps->f[RY_F_P][i];
+            ++nin;
+        } else if (r2 > r_out * r_out) {
+            sout += ps->f[RY_F_P][i];
+            ++nout;
+        }
+    }
+    return nin && nout ? sin / nin - sout / nout : NAN;
+}
+
+double ry_band_max_speed(const ry_sim *sim, int axis, double lo, double hi) {
+    const ry_particles *ps = &sim->ps;
+    double m = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        const double x = ps->f[RY_F_X + axis][i];
+        if (x < lo || x > hi) continue;
+        double u2 = 0;
+        for (int d = 0; d < sim->dim; ++d) u2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        m = fmax(m, sqrt(u2));
+    }
+    return m;
+}

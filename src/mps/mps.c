@@ -636,7 +636,7 @@ const ry_scheme_type ry_scheme_mps = {
     "mps",    "moving particle semi-implicit (Tamai weight, Iribe gradient, PCG pressure)",
     mps_init, mps_dt,
     mps_step, mps_free,
-    mps_vars};
+    mps_vars, NULL};
 
 int ry_mps_last_iterations(const ry_sim *sim) {
     if (sim->scheme != &ry_scheme_mps || !sim->scheme_state) return 0;

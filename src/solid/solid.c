@@ -764,7 +764,8 @@ const ry_scheme_type ry_scheme_solid = {
     solid_dt,
     solid_step,
     solid_free,
-    solid_vars};
+    solid_vars,
+    NULL};
 
 /* ---- probes ------------------------------------------------------------------------------- */
 

@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "ryushi/sim.h"
+#include "sph/sph_pairs.h"
 #include "sph/wcsph.h"
 
 enum { DENS_CONTINUITY, DENS_SUMMATION };
@@ -68,7 +69,7 @@ typedef struct wcsph {
 
 /* Density in hydrostatic equilibrium under gravity, free surface half a spacing above the
  * highest fluid particle: rho = rho0 (1 + rho0 g (H - z) / B)^(1/gamma) for Tait. */
-static void hydrostatic_init(ry_sim *sim, const wcsph *w);
+static ry_status hydrostatic_init(ry_sim *sim, const wcsph *w, ry_error *err);
 
 static const char *const density_names[] = {"continuity", "summation", NULL};
 static const char *const eos_names[] = {"tait", "linear", "ideal_gas", NULL};
@@ -188,7 +189,7 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     }
     int hydro;
     RY_TRY(ry_case_bool(c, "scheme.hydrostatic_init", &no, &hydro, err));
-    if (hydro) hydrostatic_init(sim, w);
+    if (hydro) RY_TRY(hydrostatic_init(sim, w, err));
     /* A sound run stays far below the sound speed and within a few per cent of the reference
      * density; beyond these it has failed (checked every step; case section `guard`). */
     if (w->eos != EOS_IDEAL_GAS) {
@@ -258,29 +259,16 @@ static inline double sound_speed(const wcsph *w, double rho, double p) {
     return w->c0;
 }
 
-static void hydrostatic_init(ry_sim *sim, const wcsph *w) {
+static ry_status hydrostatic_init(ry_sim *sim, const wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
-    double g2 = 0, up[3] = {0, 0, 0};
-    for (int d = 0; d < sim->dim; ++d) g2 += sim->gravity[d] * sim->gravity[d];
-    if (g2 <= 0) return;
-    double g = sqrt(g2);
-    for (int d = 0; d < sim->dim; ++d) up[d] = -sim->gravity[d] / g;
-    double top = -INFINITY;
-    for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
-        double z = 0;
-        for (int d = 0; d < sim->dim; ++d) z += up[d] * ps->f[RY_F_X + d][i];
-        top = fmax(top, z);
-    }
-    top += 0.5 * sim->dx;
-    for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
-        double z = 0;
-        for (int d = 0; d < sim->dim; ++d) z += up[d] * ps->f[RY_F_X + d][i];
-        int m = ps->material[i];
-        double p = w->rho0m[m] * g * (top - z);
-        ps->f[RY_F_RHO][i] = eos_density(w, m, p + w->p_background);
-    }
+    double *p = malloc((ps->n ? ps->n : 1) * sizeof *p);
+    RY_CHECK(err, p != NULL, RY_ERR_NOMEM, "out of memory");
+    ry_hydrostatic_pressure(sim, p);
+    for (size_t i = 0; i < ps->n; ++i)
+        if (ps->kind[i] == RY_KIND_FLUID)
+            ps->f[RY_F_RHO][i] = eos_density(w, ps->material[i], p[i] + w->p_background);
+    free(p);
+    return RY_OK;
 }
 
 static int is_periodic(const ry_sim *sim) {
@@ -1546,4 +1534,4 @@ const ry_scheme_type ry_scheme_wcsph = {
     "wcsph",    "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog)",
     wcsph_init, wcsph_dt,
     wcsph_step, wcsph_free,
-    wcsph_vars};
+    wcsph_vars, NULL};

@@ -18,9 +18,12 @@
 #define RY_TMPDIR_PREFIX "ryushi_mps_"
 #include "tmpdir.h"
 
-static char root[2048];
-
 #include "run_case.h"
+
+static void run(const char *case_rel, const char *sub, int nset, const char *const *sets,
+                ry_table *series, ry_sim *keep) {
+    run_case(case_rel, sub, nset, sets, series, keep, NULL);
+}
 
 /* Water 0.4 m deep at rest in a tank (l0 = 1 cm): the pressure of the fluid particles at depth
  * (rows 10 to 38 spacings below the surface, away from the side walls) within 2 % of rho g h

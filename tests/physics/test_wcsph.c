@@ -14,14 +14,18 @@
 #include <unistd.h>
 
 #include "ryushi/validate.h"
-
-static char root[2048], tmpdir[256];
+#define RY_TMPDIR_PREFIX "ryushi_wcsph_"
+#include "run_case.h"
 
 static void path(char *buf, size_t size, const char *rel) {
     snprintf(buf, size, "%s/%s", root, rel);
 }
 
-#include "run_case.h"
+/* Runs a case into tmpdir/sub and reads its series. */
+static void run(const char *case_rel, const char *sub, int nset, const char *const *sets,
+                ry_table *series, ry_sim *keep) {
+    run_case(case_rel, sub, nset, sets, series, keep, NULL);
+}
 
 /* Martin & Moyce column at a/20: the surge front within 0.30 (max) and 0.20 (RMS) of the
  * experiment in Z = front/a for T <= 3 (measured: 0.23 and 0.18; the simulated front runs
@@ -224,8 +228,6 @@ static void test_cavity_re100_ghia(void **state) {
 int main(void) {
     const char *r = getenv("RY_SOURCE_DIR");
     snprintf(root, sizeof root, "%s", r ? r : ".");
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/ryushi_wcsph_XXXXXX");
-    if (!mkdtemp(tmpdir)) return 1;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_martin_moyce_front),
         cmocka_unit_test(test_seed_dam_break_wall_arrival),
@@ -235,5 +237,5 @@ int main(void) {
         cmocka_unit_test(test_cavity_re1_steady),
         cmocka_unit_test(test_cavity_re100_ghia),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

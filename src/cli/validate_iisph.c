@@ -1,0 +1,345 @@
+/* ryushi validate iisph: implicit incompressible SPH (scheme iisph) and its two-phase form.
+ * Hydrostatic tank; Martin & Moyce dam break beside WCSPH (front accuracy and cost per
+ * simulated second); two fluids at rest (spurious speeds); square drop (Laplace pressure).
+ * Results in docs/validation.md and docs/iisph.md. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "ryushi/plot.h"
+#include "ryushi/validate.h"
+
+typedef struct irun {
+    ry_table s;
+    ry_sim sim;
+    ry_run_stats stats;
+} irun;
+
+/* Runs root/case_file with overrides into out/sub; keeps the final state and the series. */
+static ry_status run_case(const char *root, const char *out, const char *case_file, const char *sub,
+                          int nset, const char *const *sets, irun *r, ry_error *err) {
+    char cpath[4096], odir[4096], spath[4200];
+    snprintf(cpath, sizeof cpath, "%s/%s", root, case_file);
+    snprintf(odir, sizeof odir, "%s/%s", out, sub);
+    RY_TRY(ry_run_case_file(cpath, nset, sets, odir, &r->sim, &r->stats, err));
+    snprintf(spath, sizeof spath, "%s/series.csv", odir);
+    ry_status st = ry_table_read(&r->s, spath, err);
+    if (st != RY_OK) ry_sim_free(&r->sim);
+    return st;
+}
+
+static void irun_free(irun *r) {
+    ry_sim_free(&r->sim);
+    ry_table_free(&r->s);
+}
+
+static void verdict(int *failures, const char *what, int ok) {
+    printf("  %-66s %s\n", what, ok ? "PASS" : "FAIL");
+    if (!ok) ++*failures;
+}
+
+static int fail(int *failures, const ry_error *err) {
+    fprintf(stderr, "ryushi: validate: %s\n", err->msg);
+    ++*failures;
+    return 1;
+}
+
+/* Adds column cy against cx (scaled) of a series to a plot panel. */
+static void plot_columns(ry_plot *p, int panel, const char *label, const ry_table *t,
+                         const char *cx, double sx, const char *cy, double sy,
+                         ry_plot_style style) {
+    ry_error err;
+    int ix = ry_table_col(t, cx), iy = ry_table_col(t, cy);
+    if (ix < 0 || iy < 0) return;
+    double *x = ry_table_column(t, ix), *y = ry_table_column(t, iy);
+    if (x && y) {
+        for (size_t r = 0; r < t->nrows; ++r) {
+            x[r] *= sx;
+            y[r] *= sy;
+        }
+        ry_plot_series(p, panel, label, t->nrows, x, y, style, &err);
+    }
+    free(x);
+    free(y);
+}
+
+static void hydrostatic(const char *root, const char *out, int *failures) {
+    ry_error err = {0};
+    irun r;
+    const char *sets[] = {"time.end=1.0", "output.vtk=false", "time.output_interval=0.05"};
+    printf("IISPH hydrostatic tank (cases/hydrostatic_iisph.yaml, H = 0.2 m, dx = 5 mm, 1 s)\n");
+    if (run_case(root, out, "cases/hydrostatic_iisph.yaml", "iisph_hydrostatic", 3, sets, &r,
+                 &err) != RY_OK) {
+        fail(failures, &err);
+        return;
+    }
+    const double H = 0.2, g = 9.81, M = 1000.0 * 0.4 * H;
+    double psum = 0, ysum = 0;
+    int count = 0;
+    for (size_t i = 0; i < r.sim.ps.n; ++i) {
+        if (r.sim.ps.kind[i] != RY_KIND_FLUID) continue;
+        const double x = r.sim.ps.f[RY_F_X][i], y = r.sim.ps.f[RY_F_Y][i];
+        if (y < 0.005 && x > 0.1 && x < 0.3) {
+            psum += r.sim.ps.f[RY_F_P][i];
+            ysum += y;
+            ++count;
+        }
+    }
+    const double p = count ? psum / count : NAN, pexp = 1000.0 * g * (H - ysum / count);
+    const double ke = ry_column_max_from(&r.s, "kinetic_energy", 0.5) / (M * g * H);
+    printf("  bottom pressure %.1f Pa, rho g (H - y) %.1f Pa (%+.2f %%); from t = 0.5 s: kinetic "
+           "energy / MgH %.2e, max speed %.4f m/s; %ld steps, mean iterations %.2f, wall %.1f s\n",
+           p, pexp, 100 * (p / pexp - 1), ke, ry_column_max_from(&r.s, "max_speed", 0.5),
+           r.stats.steps, ry_column_max(&r.s, "iisph_iterations_mean"), r.stats.wall_s);
+    verdict(failures, "hydrostatic: bottom pressure within 3 %", fabs(p / pexp - 1) < 0.03);
+    verdict(failures, "hydrostatic: kinetic energy below 1e-3 M g H", ke < 1e-3);
+    irun_free(&r);
+}
+
+static void dam_break(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    char ref_path[4096];
+    snprintf(ref_path, sizeof ref_path,
+             "%s/data/reference/martin_moyce1952_n2_2_surge_front_table2.csv", root);
+    ry_table ref;
+    if (ry_table_read(&ref, ref_path, &err) != RY_OK) {
+        fail(failures, &err);
+        return;
+    }
+    const double a = 0.05715, g = 9.81, t_end = 0.18;
+    const int per_a[2] = {20, 40}, nres = quick ? 1 : 2;
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 1, 900, 620, &err) != RY_OK) {
+        ry_table_free(&ref);
+        fail(failures, &err);
+        return;
+    }
+    ry_plot_panel(p, 0, "Martin & Moyce column: IISPH and WCSPH", "T = t sqrt(2g/a)",
+                  "Z = front / a", &err);
+    printf("Martin & Moyce (1952) dam break, IISPH beside WCSPH, t <= %.2f s, %d thread(s)\n",
+           t_end, omp_get_max_threads());
+    printf("  %-6s %-6s %9s %8s %8s %6s %8s %7s %9s %10s %12s %7s\n", "scheme", "res", "particles",
+           "max|dZ|", "rms dZ", "dT", "rms(dT)", "steps", "wall [s]", "s per sim s", "part-steps/s",
+           "iters");
+    for (int k = 0; k < nres; ++k) {
+        for (int sc = 0; sc < 2; ++sc) {
+            char sp[64], sub[64], label[64];
+            snprintf(sp, sizeof sp, "spacing=%.10g", a / per_a[k]);
+            snprintf(sub, sizeof sub, "%s_mm_a%d", sc ? "wcsph" : "iisph", per_a[k]);
+            const char *sets[] = {sp, "time.end=0.18", "time.output_interval=0.001",
+                                  "output.vtk=false"};
+            irun r;
+            if (run_case(root, out,
+                         sc ? "cases/dam_break_mm.yaml" : "cases/dam_break_mm_iisph.yaml", sub, 4,
+                         sets, &r, &err) != RY_OK) {
+                fail(failures, &err);
+                continue;
+            }
+            ry_front_cmp cmp;
+            if (ry_compare_front(&r.s, &ref, a, g, 3.0, &cmp, &err) != RY_OK) fail(failures, &err);
+            const double iters = sc ? 0.0 : ry_column_max(&r.s, "iisph_iterations_mean");
+            printf("  %-6s a/%-4d %9zu %8.3f %8.3f %6.3f %8.3f %7ld %9.2f %10.1f %12.3g %7.2f\n",
+                   sc ? "wcsph" : "iisph", per_a[k], r.sim.ps.n, cmp.max_dev, cmp.rms_dev,
+                   cmp.shift, cmp.rms_dev_shifted, r.stats.steps, r.stats.wall_s,
+                   r.stats.wall_s / t_end, r.stats.particle_steps_per_s, iters);
+            snprintf(label, sizeof label, "%s a/%d", sc ? "WCSPH" : "IISPH", per_a[k]);
+            ry_plot_style st = ry_plot_style_line();
+            if (sc) st.dash = RY_PLOT_DASH_DASHED;
+            plot_columns(p, 0, label, &r.s, "t", sqrt(2 * g / a), "front_x", 1 / a, st);
+            if (!sc) {
+                char what[128];
+                snprintf(what, sizeof what, "IISPH a/%d: front RMS after the time shift <= 0.06",
+                         per_a[k]);
+                verdict(failures, what, cmp.rms_dev_shifted <= 0.06);
+                snprintf(what, sizeof what, "IISPH a/%d: mass exact, no particle outside",
+                         per_a[k]);
+                verdict(failures, what,
+                        ry_mass_drift(&r.s) <= 1e-12 && ry_column_max(&r.s, "outside") == 0);
+            }
+            irun_free(&r);
+        }
+    }
+    plot_columns(p, 0, "Martin & Moyce (1952)", &ref, "T", 1, "Z", 1,
+                 ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE));
+    ry_plot_xrange(p, 0, 0, 3.5, &err);
+    ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
+    char png[4096];
+    snprintf(png, sizeof png, "%s/iisph_dam_break_front.png", out);
+    if (ry_plot_write_png(p, png, &err) != RY_OK)
+        fail(failures, &err);
+    else
+        printf("  plot: %s\n", png);
+    ry_plot_free(p);
+    ry_table_free(&ref);
+}
+
+/* Two fluids at rest, the lighter above: water under silicone oil, and water under air. */
+static void stacked(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    printf("Two fluids at rest (cases/stacked_fluids.yaml, interface at y = 0.1 m, 1 s)\n");
+    printf("  %-22s %8s %12s %14s %12s %7s\n", "upper fluid", "rho2/rho1", "KE/(MgH)",
+           "max |v| band", "max |v|", "iters");
+    const char *name[2] = {"silicone oil", "air"};
+    for (int k = 0; k < (quick ? 1 : 2); ++k) {
+        const char *sets[] = {"time.end=1.0", "output.vtk=false", "materials[1].density=1.2",
+                              "materials[1].viscosity=1.5e-5"};
+        irun r;
+        if (run_case(root, out, "cases/stacked_fluids.yaml", k ? "stacked_air" : "stacked_oil",
+                     k ? 4 : 2, sets, &r, &err) != RY_OK) {
+            fail(failures, &err);
+            continue;
+        }
+        const double M = ry_column_max(&r.s, "mass"), H = 0.2, g = 9.81;
+        const double ke = ry_column_max_from(&r.s, "kinetic_energy", 0.5) / (M * g * H);
+        const double band = ry_band_max_speed(&r.sim, 1, 0.08, 0.12);
+        printf("  %-22s %8.4f %12.2e %11.4f m/s %8.4f m/s %7.2f\n", name[k],
+               r.sim.mat[1].density / r.sim.mat[0].density, ke, band,
+               ry_column_max_from(&r.s, "max_speed", 0.5),
+               ry_column_max(&r.s, "iisph_iterations_mean"));
+        char what[128];
+        snprintf(what, sizeof what, "stacked (%s): kinetic energy below 1e-3 M g H", name[k]);
+        verdict(failures, what, ke < 1e-3);
+        irun_free(&r);
+    }
+}
+
+/* Square drop relaxing to a circle: the pressure jump against sigma / R. */
+static void square_drop(const char *root, const char *out, int *failures) {
+    ry_error err = {0};
+    const double R = 0.4 / sqrt(3.14159265358979323846), sigma = 1.0, c[2] = {0.5, 0.5};
+    printf("Square drop (cases/square_drop.yaml, side 0.4 m, sigma 1 N/m): Laplace jump sigma/R "
+           "= %.3f Pa\n",
+           sigma / R);
+    const double dx[2] = {0.025, 0.0125};
+    for (int k = 0; k < 2; ++k) {
+        char sp[64], sub[64];
+        snprintf(sp, sizeof sp, "spacing=%g", dx[k]);
+        snprintf(sub, sizeof sub, "square_drop_%d", (int)lround(0.4 / dx[k]));
+        const char *sets[] = {sp, "time.end=0.4", "output.vtk=false"};
+        irun r;
+        if (run_case(root, out, "cases/square_drop.yaml", sub, 3, sets, &r, &err) != RY_OK) {
+            fail(failures, &err);
+            continue;
+        }
+        const double dp = ry_pressure_jump(&r.sim, c, 0.5 * R, 1.5 * R);
+        printf("  %2d particles across: jump %.3f Pa (%+.1f %%), max speed %.4f m/s, iterations "
+               "%.2f\n",
+               (int)lround(0.4 / dx[k]), dp, 100 * (dp * R / sigma - 1),
+               ry_column_max_from(&r.s, "max_speed", 0.3),
+               ry_column_max(&r.s, "iisph_iterations_mean"));
+        char what[128];
+        snprintf(what, sizeof what, "square drop %d across: Laplace jump within 5 %%",
+                 (int)lround(0.4 / dx[k]));
+        verdict(failures, what, fabs(dp * R / sigma - 1) <= 0.05);
+        irun_free(&r);
+    }
+}
+
+/* Slice y = 0 of the eye (|y| < dx): walls, saline and oil as markers, x and z in mm. */
+static void eye_slice(ry_plot *p, int panel, const ry_sim *sim, double t) {
+    ry_error err;
+    const ry_particles *ps = &sim->ps;
+    double *x = malloc(ps->n * sizeof *x), *z = malloc(ps->n * sizeof *z);
+    if (!x || !z) {
+        free(x);
+        free(z);
+        return;
+    }
+    char title[64];
+    snprintf(title, sizeof title, "t = %.2f s", t);
+    ry_plot_panel(p, panel, title, "x [mm] (patient's left)", "z [mm] (anterior)", &err);
+    const char *label[3] = {"wall", "saline", "silicone oil"};
+    const int color[3] = {7, 0, 1};
+    for (int set = 0; set < 3; ++set) {
+        size_t m = 0;
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (fabs(ps->f[RY_F_Y][i]) > sim->dx) continue;
+            const int k = ps->kind[i];
+            const int which =
+                k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
+            if (which != set) continue;
+            x[m] = 1e3 * ps->f[RY_F_X][i];
+            z[m++] = 1e3 * ps->f[RY_F_Z][i];
+        }
+        if (m == 0) continue;
+        ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
+        st.color = color[set];
+        st.marker_size = 7;
+        ry_plot_series(p, panel, panel == 0 ? label[set] : NULL, m, x, z, st, &err);
+    }
+    ry_plot_xrange(p, panel, -25, 25, &err);
+    ry_plot_yrange(p, panel, -20, 20, &err);
+    ry_plot_legend(p, panel, panel == 0 ? RY_PLOT_LEGEND_SW : RY_PLOT_LEGEND_NONE, &err);
+    free(x);
+    free(z);
+}
+
+/* The eye case (cases/eye_sphere.yaml) run in segments, with a slice picture at each time. */
+int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    const double tq[2] = {0.02, 0.05}, tf[3] = {0.1, 0.25, 0.5};
+    const double *times = quick ? tq : tf;
+    const int nt = quick ? 2 : 3;
+    char cpath[4096], odir[4096];
+    snprintf(cpath, sizeof cpath, "%s/cases/eye_sphere.yaml", root);
+    snprintf(odir, sizeof odir, "%s/eye_sphere", out);
+    ry_case *c = NULL;
+    ry_sim sim;
+    memset(&sim, 0, sizeof sim);
+    ry_status st = ry_case_load(&c, cpath, &err);
+    if (st == RY_OK) st = ry_sim_setup(&sim, c, odir, &err);
+    if (st == RY_OK) st = ry_sim_open_output(&sim, c, &err);
+    ry_case_free(c);
+    if (st != RY_OK) return fail(failures, &err);
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, nt + 1, 420 * (nt + 1), 420, &err) != RY_OK) {
+        ry_sim_free(&sim);
+        return fail(failures, &err);
+    }
+    ry_plot_title(p, "Silicone-oil filling, 24 mm cavity, supine: slice y = 0", &err);
+    printf("Eye (cases/eye_sphere.yaml, %zu particles, %d thread(s)): filling\n", sim.ps.n,
+           omp_get_max_threads());
+    printf("  %8s %8s %10s %10s %9s %9s\n", "t [s]", "steps", "filled", "oil-wall", "wall [s]",
+           "iters");
+    eye_slice(p, 0, &sim, 0.0);
+    double wall = 0;
+    for (int k = 0; k < nt && st == RY_OK; ++k) {
+        sim.t_end = times[k];
+        ry_run_stats stats;
+        st = ry_sim_run(&sim, NULL, &stats, &err);
+        if (st != RY_OK) break;
+        wall += stats.wall_s;
+        double ff = 0, oc = 0, last = 0, mean = 0;
+        for (const ry_probe *const *q = ry_probes(); *q; ++q) {
+            if (strcmp((*q)->name, "filled_fraction") == 0) (*q)->eval(&sim, &ff, &err);
+            if (strcmp((*q)->name, "oil_wall_contact") == 0) (*q)->eval(&sim, &oc, &err);
+            if (strcmp((*q)->name, "iisph_iterations_mean") == 0) (*q)->eval(&sim, &mean, &err);
+        }
+        (void)last;
+        printf("  %8.3f %8ld %10.4f %10.4f %9.1f %9.2f\n", sim.t, sim.step, ff, oc, wall, mean);
+        eye_slice(p, k + 1, &sim, sim.t);
+    }
+    if (st != RY_OK) fail(failures, &err);
+    char png[4096];
+    snprintf(png, sizeof png, "%s/eye_slices.png", out);
+    if (ry_plot_write_png(p, png, &err) != RY_OK)
+        fail(failures, &err);
+    else
+        printf("  plot: %s\n", png);
+    ry_plot_free(p);
+    ry_sim_free(&sim);
+    return 0;
+}
+
+int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *failures) {
+    hydrostatic(root, out, failures);
+    dam_break(root, out, quick, failures);
+    stacked(root, out, quick, failures);
+    square_drop(root, out, failures);
+    printf("Rayleigh-Taylor growth rate: not implemented yet (docs/iisph.md)\n");
+    return 0;
+}

@@ -1,0 +1,506 @@
+/* Implicit incompressible SPH (seed 004, SPEC section 4; docs/iisph.md).
+ *
+ * Ihmsen, Cornelis, Solenthaler, Horvath & Teschner (2014), "Implicit incompressible SPH",
+ * IEEE TVCG 20: 426, written in the number-density form of Hu & Adams (2006), J. Comput. Phys.
+ * 213: 844, so that two fluids of very different density share one formulation:
+ *
+ *  number density  delta_i = sum_j W_ij (fluid and wall neighbours, self included); volume
+ *                  V_i = 1 / delta_i; density rho_i = m_i delta_i (seed eq. 6 for equal masses)
+ *  constraint      delta_i = delta_0, the number density of the initial lattice, the same for
+ *                  every phase (masses are m_i = rho0_i / delta_0)
+ *  pressure force  a^p_i = -(1/m_i) sum_j (p_i / delta_i^2 + p_j / delta_j^2) grad_i W_ij
+ *                  (Hu & Adams 2006, eq. 8); wall particles take part with the pressure
+ *                  extrapolated from the fluid (Adami, Hu & Adams 2012, eq. 27), updated
+ *                  in every iteration of the solve, and the volume of the fluid particle
+ *  viscosity       artificial Laplacian of seed eq. 5 with the harmonic mean of the dynamic
+ *                  viscosities: a^v_i = (2 (d + 2) / rho_i) sum_j V_j mu_ij
+ *                  (v_ij . x_ij) / (r_ij^2 + 0.01 h^2) grad_i W_ij, mu_ij = 2 mu_i mu_j / (mu_i
+ *                  + mu_j) (V_j = V_i for walls, which carry the wall velocity: no slip)
+ *  surface force   colour field (multiphase.h, seed eq. 7-8)
+ *  solve           v* = v + dt (g + a^v + a^s); predicted delta*_i = delta_i + dt sum_j
+ *                  (v*_i - v*_j) . grad_i W_ij; relaxed Jacobi on
+ *                  sum_j (D_i - D_j) . grad_i W_ij = delta_0 - delta*_i, D_i = dt^2 a^p_i,
+ *                  p_i <- max(0, (1 - omega) p_i + omega (delta_0 - delta*_i - rest_i) / a_ii)
+ *                  (Ihmsen et al. 2014, eq. 12-17); warm start p^0 = w p(t - dt); stops
+ *                  when the average density error is below the tolerance (after at least
+ *                  min_iterations)
+ *  time            symplectic Euler: v = v* + dt a^p, x += dt v;
+ *                  dt = min(CFL h / |v|max, 0.25 sqrt(h / |a|max), 0.125 h^2 / nu_max,
+ *                  surface-tension limit, dt_max). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ryushi/sim.h"
+#include "sph/iisph.h"
+#include "sph/multiphase.h"
+#include "sph/sph_pairs.h"
+
+typedef struct iisph {
+    double omega, tol, warm;
+    long max_iter, min_iter;
+    int slip; /* free-slip walls: no viscous coupling to walls */
+    double delta0;
+    double vmax, amax;
+    int have_state;
+    /* iteration statistics */
+    long iters_last, iters_total, solves;
+    double error_last;
+    int colour_on;
+    ry_colour colour;
+    ry_pair_cache pc;
+    double *delta, *dstar, *aii, *dii, *sum, *pnew, *acc; /* per particle scratch */
+    size_t cap;
+    double *mu; /* dynamic viscosity per material */
+} iisph;
+
+/* Kinds that move under the fluid equations (and take part as fluid): fluid and outlet
+ * buffers; the pressure is solved for fluid only (outlet buffers keep the outlet pressure). */
+static const int MOBILE[RY_KIND_COUNT] = {[RY_KIND_FLUID] = 1, [RY_KIND_OUTLET] = 1};
+
+static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
+    iisph *s = calloc(1, sizeof *s);
+    RY_CHECK(err, s != NULL, RY_ERR_NOMEM, "out of memory");
+    *state = s;
+    /* Relaxation: 0.5 (Ihmsen et al. 2014) diverges in 3D with the Wendland C2 kernel at
+     * h = 1.4 dx (about 130 neighbours; the 3D dam break blows up at the first steps), 0.35
+     * converges; 0.3 is the 3D default. */
+    double omega = sim->dim == 3 ? 0.3 : 0.5, tol = 1e-3, warm = 0.5;
+    long maxit = 200, minit = 2;
+    RY_TRY(ry_case_double(c, "scheme.relaxation", &omega, 0.05, 1.0, &s->omega, err));
+    RY_TRY(ry_case_double(c, "scheme.tolerance", &tol, 1e-7, 0.1, &s->tol, err));
+    RY_TRY(ry_case_double(c, "scheme.warm_start", &warm, 0.0, 1.0, &s->warm, err));
+    RY_TRY(ry_case_int(c, "scheme.max_iterations", &maxit, 1, 100000, &s->max_iter, err));
+    RY_TRY(ry_case_int(c, "scheme.min_iterations", &minit, 1, 1000, &s->min_iter, err));
+    static const char *const walls[] = {"no_slip", "free_slip", NULL};
+    RY_TRY(ry_case_choice(c, "scheme.wall", "no_slip", walls, &s->slip, err));
+    double zero = 0, eps = 0.01;
+    RY_TRY(ry_case_double(c, "scheme.surface_tension", &zero, 0.0, 1e3, &s->colour.sigma, err));
+    s->colour_on = s->colour.sigma > 0;
+    s->colour.material = sim->nmat > 1 ? 1 : 0;
+    if (ry_case_has(c, "scheme.colour_material") || s->colour_on) {
+        const char *def = sim->mat[s->colour.material].name, *name;
+        RY_TRY(ry_case_string(c, "scheme.colour_material", def, &name, err));
+        int found = -1;
+        for (int m = 0; m < sim->nmat; ++m)
+            if (strcmp(sim->mat[m].name, name) == 0) found = m;
+        char where[256];
+        RY_CHECK(err, found >= 0, RY_ERR_INPUT,
+                 "%s: key 'scheme.colour_material': no material '%s'",
+                 ry_case_where(c, "scheme.colour_material", where, sizeof where), name);
+        s->colour.material = found;
+        RY_TRY(ry_case_double(c, "scheme.normal_threshold", &eps, 0.0, 1.0, &s->colour.eps, err));
+    }
+    if (s->colour_on) {
+        const int a = s->colour.material, b = a == 0 && sim->nmat > 1 ? 1 : 0;
+        s->colour.rho_bar = 0.5 * (sim->mat[a].density + sim->mat[b].density);
+        RY_TRY(ry_colour_init(&s->colour, sim, err));
+    }
+    s->mu = calloc((size_t)sim->nmat, sizeof *s->mu);
+    RY_CHECK(err, s->mu != NULL, RY_ERR_NOMEM, "out of memory");
+    for (int m = 0; m < sim->nmat; ++m) s->mu[m] = sim->mat[m].density * sim->mat[m].viscosity;
+    s->delta0 = ry_lattice_number_density(&sim->kernel, sim->dim, sim->dx);
+    ry_particles *ps = &sim->ps;
+    int no = 0, hydro;
+    RY_TRY(ry_case_bool(c, "scheme.hydrostatic_init", &no, &hydro, err));
+    /* The first solve starts from the hydrostatic pressure (hydrostatic_init) or from zero. */
+    ry_hydrostatic_pressure(sim, ps->f[RY_F_P]);
+    for (size_t i = 0; i < ps->n; ++i) {
+        ps->f[RY_F_MASS][i] = sim->mat[ps->material[i]].density / s->delta0;
+        if (!hydro || ps->kind[i] != RY_KIND_FLUID) ps->f[RY_F_P][i] = 0;
+        /* the warm start scales the previous pressure: undo it for the first step */
+        else if (s->warm > 0)
+            ps->f[RY_F_P][i] /= s->warm;
+        ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
+    }
+    /* Incompressible: densities stay within the tolerance inside the fluid (summation density
+     * is lower at a free surface, so there is no lower bound). */
+    sim->guard.rho_min = 0.0;
+    sim->guard.rho_max = 1.5;
+    return RY_OK;
+}
+
+static void iisph_free(void *state) {
+    iisph *s = state;
+    if (!s) return;
+    ry_colour_free(&s->colour);
+    ry_pair_cache_free(&s->pc);
+    free(s->delta);
+    free(s->mu);
+    free(s);
+}
+
+static ry_status ensure(iisph *s, size_t n, ry_error *err) {
+    if (s->cap >= n) return RY_OK;
+    size_t cap = n + n / 4 + 16;
+    /* one block: delta, dstar, aii (1 each), dii, sum, acc (3 each), pnew (1) */
+    double *b = realloc(s->delta, cap * 13 * sizeof(double));
+    RY_CHECK(err, b != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
+    s->delta = b;
+    s->dstar = b + cap;
+    s->aii = b + 2 * cap;
+    s->pnew = b + 3 * cap;
+    s->dii = b + 4 * cap;
+    s->sum = b + 7 * cap;
+    s->acc = b + 10 * cap;
+    s->cap = cap;
+    return RY_OK;
+}
+
+/* Number density, density, and the non-pressure accelerations (gravity, viscosity) into acc. */
+static void densities_and_forces(ry_sim *sim, iisph *s) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const uint8_t *kind = ps->kind, *mat = ps->material;
+    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS];
+    const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
+    const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h;
+    double *delta = s->delta, *acc = s->acc;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        double sw = w0;
+        if (MOBILE[kind[i]])
+            for (size_t q = off[i]; q < off[i + 1]; ++q) sw += cv[q * RY_PAIR_STRIDE + RY_PW_W];
+        delta[i] = sw;
+        if (MOBILE[kind[i]]) ps->f[RY_F_RHO][i] = m[i] * sw;
+    }
+    const double *v[3];
+    for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+    const double cvis = 2.0 * (dim + 2);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double a[3] = {0, 0, 0};
+        if (MOBILE[kind[i]]) {
+            const double mui = s->mu[mat[i]];
+            for (size_t q = off[i]; q < off[i + 1]; ++q) {
+                const uint32_t j = nb[q];
+                const double *P = cv + q * RY_PAIR_STRIDE;
+                if (P[RY_PW_W] == 0) continue;
+                const int wall = !MOBILE[kind[j]];
+                if (wall && s->slip) continue;
+                const double muj = wall ? mui : s->mu[mat[j]];
+                if (mui + muj <= 0) continue;
+                const double mu = 2 * mui * muj / (mui + muj);
+                const double vj = wall ? 1.0 / delta[i] : 1.0 / delta[j];
+                double vx = 0;
+                for (int d = 0; d < dim; ++d) vx += (v[d][i] - v[d][j]) * P[RY_PW_DX + d];
+                const double f = cvis * vj * mu * vx / (P[RY_PW_R2] + eta2);
+                for (int d = 0; d < dim; ++d) a[d] += f * P[RY_PW_GX + d];
+            }
+            const double inv_rho = 1.0 / (m[i] * delta[i]);
+            for (int d = 0; d < dim; ++d) a[d] = a[d] * inv_rho + sim->gravity[d];
+        }
+        for (int d = 0; d < 3; ++d) acc[3 * i + d] = a[d];
+    }
+}
+
+/* Wall and inlet particles: pressure extrapolated from the fluid with the hydrostatic term,
+ * Adami, Hu & Adams (2012), eq. 27, p_w = sum_f (p_f + rho_f g . x_wf) W_wf / sum_f W_wf,
+ * from the current iterate (not negative). */
+static void wall_extrapolate(ry_sim *sim, iisph *s, double *p) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const uint8_t *kind = ps->kind;
+    const double *cv = s->pc.v, *rho = ps->f[RY_F_RHO];
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (kind[i] != RY_KIND_WALL && kind[i] != RY_KIND_INLET) continue;
+        double sw = 0, sp = 0;
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            if (!MOBILE[kind[j]]) continue;
+            const double *P = cv + q * RY_PAIR_STRIDE;
+            double gr = 0;
+            for (int d = 0; d < dim; ++d) gr += sim->gravity[d] * P[RY_PW_DX + d];
+            sw += P[RY_PW_W];
+            sp += (p[j] + rho[j] * gr) * P[RY_PW_W];
+        }
+        p[i] = sw > 0 ? fmax(sp / sw, 0.0) : 0.0;
+    }
+}
+
+/* S_i = sum_j d_ij p_j = -(dt^2 / m_i) sum_j p_j / delta_j^2 grad_i W_ij over mobile j, and
+ * over walls with their extrapolated pressure and the volume of i. */
+static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const uint8_t *kind = ps->kind;
+    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double a[3] = {0, 0, 0};
+        if (MOBILE[kind[i]]) {
+            const double di2 = delta[i] * delta[i];
+            for (size_t q = off[i]; q < off[i + 1]; ++q) {
+                const uint32_t j = nb[q];
+                const double *P = cv + q * RY_PAIR_STRIDE;
+                const double f = MOBILE[kind[j]] ? p[j] / (delta[j] * delta[j]) : p[j] / di2;
+                for (int d = 0; d < dim; ++d) a[d] += f * P[RY_PW_GX + d];
+            }
+            for (int d = 0; d < dim; ++d) a[d] *= -dt2 / m[i];
+        }
+        for (int d = 0; d < 3; ++d) s->sum[3 * i + d] = a[d];
+    }
+}
+
+/* The pressure Poisson equation by relaxed Jacobi; returns the iterations. */
+static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const uint8_t *kind = ps->kind;
+    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+    const double dt2 = dt * dt, d0 = s->delta0;
+    double *p = ps->f[RY_F_P], *pnew = s->pnew;
+    const double *v[3];
+    for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+        /* Predicted number density from the predicted velocities (in the velocity field), the
+         * diagonal d_ii and a_ii. */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (!MOBILE[kind[i]]) continue;
+        double dv = 0, dii[3] = {0, 0, 0};
+        const double di2 = delta[i] * delta[i];
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            const double *P = cv + q * RY_PAIR_STRIDE;
+            for (int d = 0; d < dim; ++d) {
+                dv += (v[d][i] - v[d][j]) * P[RY_PW_GX + d];
+                dii[d] += P[RY_PW_GX + d];
+            }
+        }
+        /* Only compression is corrected: an expanded particle (free surface, splash) asks for
+         * no tension, which the non-negative pressure could not give. */
+        s->dstar[i] = delta[i] + dt * dv;
+        for (int d = 0; d < 3; ++d) s->dii[3 * i + d] = -dt2 / (m[i] * di2) * dii[d];
+    }
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (!MOBILE[kind[i]]) continue;
+        const double *dii = s->dii + 3 * i;
+        const double di2 = delta[i] * delta[i];
+        double a = 0;
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            const double *P = cv + q * RY_PAIR_STRIDE;
+            double g2 = 0, dg = 0;
+            for (int d = 0; d < dim; ++d) {
+                dg += dii[d] * P[RY_PW_GX + d];
+                g2 += P[RY_PW_GX + d] * P[RY_PW_GX + d];
+            }
+            a += dg;
+            /* - d_ji . grad_i W_ij, d_ji = -(dt^2 / m_j) grad_j W_ji / delta_i^2 */
+            if (MOBILE[kind[j]]) a -= dt2 / (m[j] * di2) * g2;
+        }
+        s->aii[i] = a;
+    }
+    /* Warm start. */
+    for (size_t i = 0; i < n; ++i)
+        if (kind[i] == RY_KIND_FLUID) p[i] *= s->warm;
+    size_t nfluid = 0;
+    for (size_t i = 0; i < n; ++i) nfluid += kind[i] == RY_KIND_FLUID;
+    const double omega = s->omega;
+    long it = 0;
+    double avg = 0;
+    while (it < s->max_iter) {
+        wall_extrapolate(sim, s, p);
+        pressure_sums(sim, s, p, dt2);
+        double esum = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : esum)
+        for (size_t i = 0; i < n; ++i) {
+            if (kind[i] != RY_KIND_FLUID) {
+                pnew[i] = p[i];
+                continue;
+            }
+            const double *si = s->sum + 3 * i;
+            const double di2 = delta[i] * delta[i];
+            double rest = 0;
+            for (size_t q = off[i]; q < off[i + 1]; ++q) {
+                const uint32_t j = nb[q];
+                const double *P = cv + q * RY_PAIR_STRIDE;
+                double t = 0;
+                for (int d = 0; d < dim; ++d) t += si[d] * P[RY_PW_GX + d];
+                if (MOBILE[kind[j]]) {
+                    /* D_j without the part from p_i: d_jj p_j + S_j - d_ji p_i */
+                    const double *sj = s->sum + 3 * j, *djj = s->dii + 3 * j;
+                    const double cji = dt2 / (m[j] * di2) * p[i]; /* d_ji p_i = cji grad_i W_ij */
+                    for (int d = 0; d < dim; ++d)
+                        t -= (djj[d] * p[j] + sj[d] - cji * P[RY_PW_GX + d]) * P[RY_PW_GX + d];
+                }
+                rest += t;
+            }
+            const double aii = s->aii[i];
+            const double err = aii * p[i] + rest + s->dstar[i] - d0; /* delta - delta_0 now */
+            double pn = 0;
+            if (fabs(aii) > 1e-300)
+                pn = (1 - omega) * p[i] + omega * (d0 - s->dstar[i] - rest) / aii;
+            pn = pn > 0 ? pn : 0;
+            pnew[i] = pn;
+            /* Ihmsen's average density error: clamped (free-surface) particles count only when
+             * compressed. */
+            esum += (p[i] > 0 || err > 0) ? err : 0.0;
+        }
+        memcpy(p, pnew, n * sizeof *p);
+        ++it;
+        avg = nfluid ? esum / ((double)nfluid * d0) : 0.0;
+        if (it >= s->min_iter && fabs(avg) <= s->tol) break;
+    }
+    s->error_last = avg;
+    return it;
+}
+
+static ry_status iisph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
+    (void)err;
+    iisph *s = state;
+    const double h = sim->kernel.h;
+    double t = INFINITY;
+    if (!s->have_state) { /* first step: speeds and gravity of the initial state */
+        const ry_particles *ps = &sim->ps;
+        double v2 = 0, g2 = 0;
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (!MOBILE[ps->kind[i]]) continue;
+            double u = 0;
+            for (int d = 0; d < sim->dim; ++d) u += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+            v2 = fmax(v2, u);
+        }
+        for (int d = 0; d < sim->dim; ++d) g2 += sim->gravity[d] * sim->gravity[d];
+        s->vmax = sqrt(v2);
+        s->amax = sqrt(g2);
+    }
+    if (s->vmax > 0) t = sim->cfl * h / s->vmax;
+    if (s->amax > 0) t = fmin(t, 0.25 * sqrt(h / s->amax));
+    double numax = 0;
+    for (int m = 0; m < sim->nmat; ++m) numax = fmax(numax, sim->mat[m].viscosity);
+    if (numax > 0) t = fmin(t, 0.125 * h * h / numax);
+    if (s->colour_on) t = fmin(t, ry_colour_dt(&s->colour, sim));
+    if (!isfinite(t)) t = sim->dt_max > 0 ? sim->dt_max : 1e-3 * sim->t_end;
+    *dt = t;
+    return RY_OK;
+}
+
+static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) {
+    iisph *s = state;
+    ry_particles *ps = &sim->ps;
+    RY_TRY(ry_sim_neighbors(sim, sim->kernel.radius, err)); /* may reorder particles */
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    RY_TRY(ensure(s, n, err));
+    /* Particles created by open boundaries get their mass here. */
+    for (size_t i = 0; i < n; ++i)
+        ps->f[RY_F_MASS][i] = sim->mat[ps->material[i]].density / s->delta0;
+    static const int need[RY_KIND_COUNT] = {
+        [RY_KIND_FLUID] = 1, [RY_KIND_OUTLET] = 1, [RY_KIND_WALL] = 1, [RY_KIND_INLET] = 1};
+    RY_TRY(ry_pair_cache_fill(&s->pc, sim, need, err));
+    densities_and_forces(sim, s);
+    if (s->colour_on)
+        RY_TRY(ry_colour_force(&s->colour, sim, &s->pc, s->delta, MOBILE, s->acc, err));
+    /* Predicted velocity v* = v + dt a_nonpressure. */
+    for (size_t i = 0; i < n; ++i) {
+        if (!MOBILE[ps->kind[i]]) continue;
+        for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][i] += dt * s->acc[3 * i + d];
+    }
+    const long it = pressure_solve(sim, s, dt);
+    s->iters_last = it;
+    s->iters_total += it;
+    s->solves += 1;
+    /* Pressure acceleration with the final pressures; v = v* + dt a^p; x += dt v. */
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta, *p = ps->f[RY_F_P];
+    double vmax2 = 0, amax2 = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : vmax2, amax2)
+    for (size_t i = 0; i < n; ++i) {
+        if (!MOBILE[ps->kind[i]]) continue;
+        const double pi = p[i] / (delta[i] * delta[i]);
+        double a[3] = {0, 0, 0};
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            const double pj =
+                p[j] / (MOBILE[ps->kind[j]] ? delta[j] * delta[j] : delta[i] * delta[i]);
+            const double *P = cv + q * RY_PAIR_STRIDE;
+            for (int d = 0; d < dim; ++d) a[d] -= (pi + pj) * P[RY_PW_GX + d];
+        }
+        double a2 = 0, v2 = 0;
+        for (int d = 0; d < dim; ++d) {
+            a[d] /= m[i];
+            ps->f[RY_F_VX + d][i] += dt * a[d];
+            const double at = a[d] + s->acc[3 * i + d];
+            ps->f[RY_F_AX + d][i] = at;
+            a2 += at * at;
+            v2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        }
+        amax2 = fmax(amax2, a2);
+        vmax2 = fmax(vmax2, v2);
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        const int k = ps->kind[i];
+        if (!MOBILE[k] && k != RY_KIND_INLET) continue;
+        for (int d = 0; d < dim; ++d) {
+            double x = ps->f[RY_F_X + d][i] + dt * ps->f[RY_F_VX + d][i];
+            if (sim->box.periodic[d]) { /* back into the periodic box */
+                const double lo = sim->box.lo[d], L = sim->box.hi[d] - lo;
+                if (x < lo) x += L;
+                if (x >= lo + L) x -= L;
+            }
+            ps->f[RY_F_X + d][i] = x;
+        }
+    }
+    s->vmax = sqrt(vmax2);
+    s->amax = sqrt(amax2);
+    s->have_state = 1;
+    return RY_OK;
+}
+
+static int iisph_vars(void *state, ry_state_var *v, int max) {
+    iisph *s = state;
+    const ry_state_var all[] = {{"vmax", &s->vmax, NULL, NULL},
+                                {"amax", &s->amax, NULL, NULL},
+                                {"error_last", &s->error_last, NULL, NULL},
+                                {"have_state", NULL, &s->have_state, NULL},
+                                {"iters_last", NULL, NULL, &s->iters_last},
+                                {"iters_total", NULL, NULL, &s->iters_total},
+                                {"solves", NULL, NULL, &s->solves}};
+    int n = (int)(sizeof all / sizeof all[0]);
+    if (n > max) n = max;
+    memcpy(v, all, (size_t)n * sizeof *v);
+    return n;
+}
+
+static void iisph_report(void *state, char *buf, size_t size) {
+    const iisph *s = state;
+    snprintf(
+        buf, size, "iisph_iterations_mean=%.3g iisph_iterations_last=%ld iisph_error_last=%.3g",
+        s->solves ? (double)s->iters_total / (double)s->solves : 0.0, s->iters_last, s->error_last);
+}
+
+int ry_iisph_iterations(const ry_sim *sim, double *last, double *mean) {
+    if (sim->scheme != &ry_scheme_iisph || !sim->scheme_state) return 0;
+    const iisph *s = sim->scheme_state;
+    *last = (double)s->iters_last;
+    *mean = s->solves ? (double)s->iters_total / (double)s->solves : 0.0;
+    return 1;
+}
+
+const ry_scheme_type ry_scheme_iisph = {
+    "iisph",
+    "implicit incompressible SPH (Ihmsen et al. 2014; number-density two-phase form, colour-field "
+    "surface tension)",
+    iisph_init,
+    iisph_dt,
+    iisph_step,
+    iisph_free,
+    iisph_vars,
+    iisph_report};

@@ -1,0 +1,111 @@
+/* Colour-field interface of two fluids (multiphase.h). */
+#include "sph/multiphase.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+ry_status ry_colour_init(ry_colour *cf, ry_sim *sim, ry_error *err) {
+    RY_TRY(
+        ry_particles_add_field(&sim->ps, "colour", "1", -1, RY_FIELD_OUTPUT, &cf->f_colour, err));
+    RY_TRY(ry_particles_add_field(&sim->ps, "curvature", "1/m", -1, RY_FIELD_OUTPUT,
+                                  &cf->f_curvature, err));
+    return RY_OK;
+}
+
+void ry_colour_free(ry_colour *cf) {
+    free(cf->nrm);
+    cf->nrm = NULL;
+    cf->cap = 0;
+}
+
+double ry_colour_dt(const ry_colour *cf, const ry_sim *sim) {
+    if (cf->sigma <= 0) return INFINITY;
+    double rho = INFINITY;
+    for (int m = 0; m < sim->nmat; ++m) rho = fmin(rho, sim->mat[m].density);
+    const double h = sim->kernel.h;
+    return 0.25 * sqrt(rho * h * h * h / (2.0 * 3.14159265358979323846 * cf->sigma));
+}
+
+ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, const double *delta,
+                          const int mobile[RY_KIND_COUNT], double *acc, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    if (cf->cap < n) {
+        double *v = realloc(cf->nrm, 3 * n * sizeof(double));
+        RY_CHECK(err, v != NULL, RY_ERR_NOMEM, "out of memory (colour field)");
+        cf->nrm = v;
+        cf->cap = n;
+    }
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const uint8_t *kind = ps->kind, *mat = ps->material;
+    const double *cv = pc->v;
+    double *cs = ps->f[cf->f_colour], *kap = ps->f[cf->f_curvature], *nrm = cf->nrm;
+    const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
+    const int cm = cf->material;
+    const double thr = cf->eps / sim->kernel.h;
+    /* Smoothed colour (seed eq. 8), over fluid neighbours. */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (!mobile[kind[i]]) {
+            cs[i] = 0;
+            continue;
+        }
+        double sn = w0 * (mat[i] == cm) / delta[i], sd = w0 / delta[i];
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            if (!mobile[kind[j]]) continue;
+            const double wv = cv[q * RY_PAIR_STRIDE + RY_PW_W] / delta[j];
+            sn += (mat[j] == cm) * wv;
+            sd += wv;
+        }
+        cs[i] = sn / sd;
+    }
+    /* Normal n = grad c'. */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double g[3] = {0, 0, 0};
+        if (mobile[kind[i]])
+            for (size_t q = off[i]; q < off[i + 1]; ++q) {
+                const uint32_t j = nb[q];
+                if (!mobile[kind[j]]) continue;
+                const double *P = cv + q * RY_PAIR_STRIDE;
+                const double f = (cs[j] - cs[i]) / delta[j];
+                for (int d = 0; d < dim; ++d) g[d] += f * P[RY_PW_GX + d];
+            }
+        for (int d = 0; d < 3; ++d) nrm[3 * i + d] = g[d];
+    }
+    /* Curvature and force. */
+    const double sigma = cf->sigma;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        kap[i] = 0;
+        if (!mobile[kind[i]]) continue;
+        const double *ni = nrm + 3 * i;
+        const double li = sqrt(ni[0] * ni[0] + ni[1] * ni[1] + ni[2] * ni[2]);
+        if (li <= thr) continue;
+        double num = 0, den = 0;
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            if (!mobile[kind[j]]) continue;
+            const double *nj = nrm + 3 * j;
+            const double lj = sqrt(nj[0] * nj[0] + nj[1] * nj[1] + nj[2] * nj[2]);
+            if (lj <= thr) continue;
+            const double *P = cv + q * RY_PAIR_STRIDE;
+            double dot = 0, g2 = 0;
+            for (int d = 0; d < dim; ++d) {
+                dot += (ni[d] / li - nj[d] / lj) * P[RY_PW_GX + d];
+                g2 += P[RY_PW_GX + d] * P[RY_PW_GX + d];
+            }
+            num += dot / delta[j];
+            den += sqrt(P[RY_PW_R2] * g2) / delta[j];
+        }
+        if (den <= 0) continue;
+        const double k = dim * num / den;
+        kap[i] = k;
+        const double f = sigma * k / cf->rho_bar;
+        for (int d = 0; d < dim; ++d) acc[3 * i + d] += f * ni[d];
+    }
+    return RY_OK;
+}

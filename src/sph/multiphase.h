@@ -1,0 +1,47 @@
+/* Two-phase interface by a colour field (seed 004, eq. 7-8; Brackbill et al. 1992 continuum
+ * surface force in the number-density form of Hu & Adams 2006).
+ *
+ *  colour       c_i = 1 for particles of the colour material, 0 for the other fluid
+ *  smoothing    c'_i = sum_j (c_j / delta_j) W_ij / sum_j (1 / delta_j) W_ij    (seed eq. 8)
+ *               delta_i = sum_j W_ij, the number density (fluid neighbours, self included)
+ *  normal       n_i = grad c'_i = sum_j V_j (c'_j - c'_i) grad_i W_ij,  V_j = 1 / delta_j
+ *  curvature    kappa_i = -div(n / |n|) = d sum_j V_j (nh_i - nh_j) . grad_i W_ij
+ *                                         / sum_j V_j |x_ij| |grad_i W_ij|
+ *               over the neighbours with a reliable normal, |n| > eps / h (Morris 2000)
+ *  force        F_i = (1 / delta_i) sigma kappa_i n_i                          (seed eq. 7)
+ *               with Brackbill's density scaling: the force per volume sigma kappa n is
+ *               weighted by 2 rho_i / (rho_a + rho_b) (rho_a, rho_b the two reference
+ *               densities), so that both phases get the same acceleration
+ *               sigma kappa n / rhobar, rhobar = (rho_a + rho_b) / 2: a light phase (air) is not
+ *               kicked by the force the heavy side needs. */
+#ifndef RYUSHI_SPH_MULTIPHASE_H
+#define RYUSHI_SPH_MULTIPHASE_H
+
+#include "ryushi/sim.h"
+#include "sph/sph_pairs.h"
+
+typedef struct ry_colour {
+    int material;    /* the colour material (c = 1) */
+    double sigma;    /* interfacial tension [N/m] */
+    double eps;      /* normal threshold |n| h > eps */
+    double rho_bar;  /* mean reference density of the two phases */
+    int f_colour;    /* particle field: smoothed colour c' */
+    int f_curvature; /* particle field: curvature [1/m] */
+    double *nrm;     /* 3 x n: normals */
+    size_t cap;
+} ry_colour;
+
+/* Registers the output fields. */
+ry_status ry_colour_init(ry_colour *cf, ry_sim *sim, ry_error *err);
+void ry_colour_free(ry_colour *cf);
+
+/* Adds the interfacial acceleration to acc[3 i + d] of the fluid particles (mobile[kind] set),
+ * given their number density delta and the pair cache of the current step. */
+ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, const double *delta,
+                          const int mobile[RY_KIND_COUNT], double *acc, ry_error *err);
+
+/* Largest stable time step for surface tension (Brackbill et al. 1992):
+ * dt <= 0.25 sqrt(rho_min h^3 / (2 pi sigma)). */
+double ry_colour_dt(const ry_colour *cf, const ry_sim *sim);
+
+#endif

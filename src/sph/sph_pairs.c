@@ -1,0 +1,96 @@
+/* Pair cache of the implicit SPH schemes (sph_pairs.h). */
+#include "sph/sph_pairs.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int need[RY_KIND_COUNT],
+                             ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n, m = sim->nl.offset[n];
+    if (pc->cap < m) {
+        size_t cap = m + m / 4 + 64;
+        double *v = realloc(pc->v, cap * RY_PAIR_STRIDE * sizeof(double));
+        RY_CHECK(err, v != NULL, RY_ERR_NOMEM, "out of memory (pair cache of %zu entries)", m);
+        pc->v = v;
+        pc->cap = cap;
+    }
+    const ry_kernel *k = &sim->kernel;
+    const int dim = sim->dim;
+    const double rad2 = k->radius * k->radius;
+    const int periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
+    const double *x[3];
+    ry_particles_coords(ps, x);
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    double *cv = pc->v;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double *row = cv + off[i] * RY_PAIR_STRIDE;
+        const size_t len = off[i + 1] - off[i];
+        if (!need[ps->kind[i]]) {
+            memset(row, 0, len * RY_PAIR_STRIDE * sizeof(double));
+            continue;
+        }
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            double dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
+            if (periodic) ry_box_min_image(&sim->box, dx);
+            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+            double *P = cv + q * RY_PAIR_STRIDE;
+            memset(P, 0, RY_PAIR_STRIDE * sizeof(double));
+            P[RY_PW_R2] = r2;
+            for (int d = 0; d < dim; ++d) P[RY_PW_DX + d] = dx[d];
+            if (r2 >= rad2 || r2 <= 0) continue;
+            const double r = sqrt(r2);
+            P[RY_PW_W] = ry_kernel_w(k, r);
+            const double f = ry_kernel_dwdr(k, r) / r;
+            for (int d = 0; d < dim; ++d) P[RY_PW_GX + d] = f * dx[d];
+        }
+    }
+    return RY_OK;
+}
+
+void ry_pair_cache_free(ry_pair_cache *pc) {
+    free(pc->v);
+    pc->v = NULL;
+    pc->cap = 0;
+}
+
+double ry_lattice_number_density(const ry_kernel *k, int dim, double dx) {
+    const int m = (int)ceil(k->radius / dx) + 1;
+    double s = 0;
+    for (int a = -m; a <= m; ++a)
+        for (int b = -m; b <= m; ++b)
+            for (int c = (dim > 2 ? -m : 0); c <= (dim > 2 ? m : 0); ++c) {
+                double r = dx * sqrt((double)(a * a + b * b + c * c));
+                if (r < k->radius) s += ry_kernel_w(k, r);
+            }
+    return s;
+}
+
+void ry_hydrostatic_pressure(const ry_sim *sim, double *p) {
+    const ry_particles *ps = &sim->ps;
+    double g2 = 0, up[3] = {0, 0, 0};
+    for (size_t i = 0; i < ps->n; ++i) p[i] = 0;
+    for (int d = 0; d < sim->dim; ++d) g2 += sim->gravity[d] * sim->gravity[d];
+    if (g2 <= 0) return;
+    const double g = sqrt(g2);
+    for (int d = 0; d < sim->dim; ++d) up[d] = -sim->gravity[d] / g;
+    double top = -INFINITY;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double z = 0;
+        for (int d = 0; d < sim->dim; ++d) z += up[d] * ps->f[RY_F_X + d][i];
+        top = fmax(top, z);
+    }
+    top += 0.5 * sim->dx;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double z = 0;
+        for (int d = 0; d < sim->dim; ++d) z += up[d] * ps->f[RY_F_X + d][i];
+        p[i] = sim->mat[ps->material[i]].density * g * (top - z);
+    }
+}

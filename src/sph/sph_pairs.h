@@ -1,0 +1,32 @@
+/* Pair cache shared by the implicit SPH schemes: for every entry q of the CSR neighbour list,
+ * the kernel value and its gradient grad_i W_ij (zero for pairs beyond the support radius that
+ * the Verlet skin keeps in the list), computed once per step and read by every later pass. */
+#ifndef RYUSHI_SPH_PAIRS_H
+#define RYUSHI_SPH_PAIRS_H
+
+#include "ryushi/sim.h"
+
+/* RY_PAIR_STRIDE doubles per list entry: W, grad_i W_ij (3), r^2, x_ij = x_i - x_j (3). */
+enum { RY_PW_W, RY_PW_GX, RY_PW_GY, RY_PW_GZ, RY_PW_R2, RY_PW_DX, RY_PW_DY, RY_PW_DZ };
+#define RY_PAIR_STRIDE 8
+
+typedef struct ry_pair_cache {
+    double *v; /* RY_PAIR_STRIDE x (entries of the list) */
+    size_t cap;
+} ry_pair_cache;
+
+/* Fills the cache for the rows of the particles with need[kind] set (other rows are zero). */
+ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int need[RY_KIND_COUNT],
+                             ry_error *err);
+void ry_pair_cache_free(ry_pair_cache *pc);
+
+/* Number density of a full lattice of spacing dx: sum over lattice points of W(|x|), the
+ * value sum_j W_ij of a particle inside a uniform fluid at the initial spacing. */
+double ry_lattice_number_density(const ry_kernel *k, int dim, double dx);
+
+/* Hydrostatic pressure of every fluid particle, p = rho0 |g| (top - z) along the upward
+ * direction -g/|g|, the free surface half a spacing above the highest fluid particle; p is 0
+ * for other kinds and everywhere without gravity. p has ps.n entries. */
+void ry_hydrostatic_pressure(const ry_sim *sim, double *p);
+
+#endif
