@@ -455,36 +455,36 @@ static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double
     F[FK_P * fs] = (float)pi;
 }
 
-/* The records of the particles other than walls (the wall pass writes the walls'), as loops
- * over contiguous arrays. */
+/* The pressure of the fluid (equation of state) and the records of the particles other than
+ * walls (the wall pass writes the walls'), in one loop over contiguous arrays. */
 static void fpack_fluid(ry_sim *sim, const wcsph *w) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n, fs = w->fpack_stride;
     const int dim = sim->dim, laminar = w->laminar;
     const double rho_ref = w->rho0m[0];
     const uint8_t *restrict kind = ps->kind, *restrict matl = ps->material;
-    const double *restrict rho = ps->f[RY_F_RHO], *restrict p = ps->f[RY_F_P];
+    const double *restrict rho = ps->f[RY_F_RHO], *restrict e = ps->f[RY_F_E];
+    double *restrict p = ps->f[RY_F_P];
     const double *restrict m = ps->f[RY_F_MASS];
     const ry_material *mat = sim->mat;
     double *restrict xp = w->fpack;
     float *restrict fk = (float *)(xp + 3 * fs);
-    for (int d = 0; d < dim; ++d) {
-        const double *restrict x = ps->f[RY_F_X + d], *restrict v = ps->f[RY_F_VX + d];
-        double *restrict xd = xp + (size_t)d * fs;
-        float *restrict u = fk + (FK_U + d) * fs, *restrict ug = fk + (FK_UG + d) * fs;
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; ++i) {
-            xd[i] = x[i];
-            u[i] = ug[i] = (float)v[i]; /* walls: rewritten by the wall pass */
-        }
-    }
+    const double *x[3], *v[3];
+    ry_particles_coords(ps, x);
+    for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
+        for (int d = 0; d < dim; ++d) {
+            xp[(size_t)d * fs + i] = x[d][i];
+            /* walls: rewritten by the wall pass */
+            fk[(FK_U + d) * fs + i] = fk[(FK_UG + d) * fs + i] = (float)v[d][i];
+        }
         if (kind[i] == RY_KIND_WALL || kind[i] == RY_KIND_INLET) {
             /* Until the wall pass: inert, as the wall pass reads every candidate (masked). */
             for (int k = FK_DRHO; k < FK_COUNT; ++k) fk[(size_t)k * fs + i] = 0.0f;
             continue;
         }
+        if (kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, matl[i], rho[i], e[i]);
         const double inv_rho = 1.0 / rho[i];
         fk[FK_DRHO * fs + i] = (float)(rho[i] - rho_ref);
         fk[FK_PRHO2 * fs + i] = (float)(p[i] * inv_rho * inv_rho);
@@ -1412,9 +1412,11 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     const size_t n = ps->n;
     double *p = ps->f[RY_F_P];
     const double *rho = ps->f[RY_F_RHO], *e = ps->f[RY_F_E];
+    if (!w->fast) {
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        if (ps->kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, ps->material[i], rho[i], e[i]);
+        for (size_t i = 0; i < n; ++i)
+            if (ps->kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, ps->material[i], rho[i], e[i]);
+    }
     if (w->fast) {
         /* The wall pass reads the fluid's records and rewrites the walls'. */
         RY_TRY(prepare_pairs(sim, w, err));
