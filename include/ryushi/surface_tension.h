@@ -15,8 +15,16 @@
 
 typedef enum ry_st_model { RY_ST_NONE = 0, RY_ST_CSF, RY_ST_POTENTIAL } ry_st_model;
 
+/* CSF curvature: the divergence of the normals of the single colour gradients (the default), or
+ * the surface divergence tr((I - n n) grad n) of the normals of the smoothed colour gradient. */
+typedef enum ry_st_curvature_form {
+    RY_ST_CURV_DIVERGENCE = 0,
+    RY_ST_CURV_SURFACE
+} ry_st_curvature_form;
+
 typedef struct ry_surface_tension {
-    int model; /* ry_st_model */
+    int model;     /* ry_st_model */
+    int curvature; /* ry_st_curvature_form (CSF; ry_st_setup sets the default) */
     int dim;
     double sigma; /* surface tension coefficient [N/m] */
     double l0;    /* lattice spacing [m] */
@@ -32,6 +40,8 @@ typedef struct ry_surface_tension {
 
 /* Names used in case files: "none", "csf", "potential" (NULL-terminated, indexed by model). */
 extern const char *const ry_st_model_names[];
+/* "divergence", "surface" (NULL-terminated, indexed by ry_st_curvature_form). */
+extern const char *const ry_st_curvature_names[];
 
 /* Sets up a model on the square (2D) or simple cubic (3D) lattice of spacing l0. */
 ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, double re,
@@ -55,7 +65,7 @@ ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, doub
 
 /* CSF curvature (1/R in 2D, 2/R in 3D for a sphere) of the fluid particles near the surface
  * (0 elsewhere): the corrected divergence of the colour function's outward normal. kappa holds
- * 5 n doubles (the rest is work space). */
+ * 8 n doubles (the rest is work space). */
 void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *kappa);
 
 #endif

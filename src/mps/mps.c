@@ -57,7 +57,7 @@ typedef struct mps {
     int32_t *unk; /* unknown index per particle, -1 if none */
     uint8_t *role;
     double *b, *xs;
-    double *pd;       /* Dirichlet pressure of the surface particles (2 n: work) */
+    double *pd;       /* Dirichlet pressure of the surface particles (8 n: work) */
     int csf_pressure; /* CSF as the Laplace jump on the surface particles */
     size_t cap;
     int last_iters, last_viters;
@@ -124,15 +124,19 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
         RY_TRY(ry_case_double(c, "surface_tension.sigma", NULL, 0.0, INFINITY, &sigma, err));
         RY_TRY(ry_case_double(c, "surface_tension.radius", &rst, 1.5, 6.0, &rst, err));
     }
+    int curv = RY_ST_CURV_DIVERGENCE;
     if (model == RY_ST_CSF) {
         static const char *const forms[] = {"force", "pressure", NULL};
         RY_TRY(
             ry_case_choice(c, "surface_tension.csf_form", "force", forms, &M->csf_pressure, err));
+        RY_TRY(ry_case_choice(c, "surface_tension.curvature", "divergence", ry_st_curvature_names,
+                              &curv, err));
     }
     M->re_g *= l0;
     M->re_l *= l0;
     rst *= l0;
     RY_TRY(ry_st_setup(&M->st, model, sim->dim, l0, rst, sigma, err));
+    M->st.curvature = curv;
     M->re_max = fmax(fmax(M->re_g, M->re_l), model != RY_ST_NONE ? rst : 0.0);
     double lam_g;
     ry_mps_lattice(sim->dim, l0, M->re_g, &M->n0g, &lam_g);
@@ -174,7 +178,7 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (b) M->b = b;
     double *x = realloc(M->xs, 3 * c * sizeof *x);
     if (x) M->xs = x;
-    double *pd = realloc(M->pd, 5 * c * sizeof *pd);
+    double *pd = realloc(M->pd, 8 * c * sizeof *pd);
     if (pd) M->pd = pd;
     RY_CHECK(err, u && r && b && x && pd, RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;

@@ -8,6 +8,7 @@
 #include "ryushi/surface_tension.h"
 
 const char *const ry_st_model_names[] = {"none", "csf", "potential", NULL};
+const char *const ry_st_curvature_names[] = {"divergence", "surface", NULL};
 
 double ry_st_potential_f(double r, double l0, double re) {
     return r <= re ? (r - l0) * (r - re) : 0.0;
@@ -46,9 +47,10 @@ double ry_st_potential_coefficient(int dim, double l0, double re, double sigma) 
 
 /* CSF: the sum over one column of a flat half-space lattice (depths k = 1, 2, ... spacings
  * below the top layer) of the inward sum |sum_j w(r) x_ij / r| (its normal part): it spreads
- * the jump sigma kappa over the layers under the surface (a discrete delta function). The
- * surface layer itself is left out: its pressure is fixed (p = 0), so a force on it would not
- * reach the pressure inside. */
+ * the jump sigma kappa over the top layer and the layers under it (a discrete delta function;
+ * the top layer carries g_top/S, 81 % in 2D at re = 3.1 l0). Its pressure is fixed (p = 0) in
+ * MPS, and the pressure equation turns only part of the force on it into pressure inside
+ * (docs/mps.md, known limits). */
 static double csf_delta_sum(int dim, double l0, double re, double *g_top) {
     const int K = lattice_extent(l0, re);
     double S = 0;
@@ -74,6 +76,7 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     RY_CHECK(err, l0 > 0 && re > l0 && sigma >= 0, RY_ERR_INPUT,
              "surface tension: need spacing > 0, radius > spacing and sigma >= 0");
     st->model = model;
+    st->curvature = RY_ST_CURV_DIVERGENCE;
     st->dim = dim;
     st->sigma = sigma;
     st->l0 = l0;
@@ -81,6 +84,16 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     st->C = ry_st_potential_coefficient(dim, l0, re, sigma);
     st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
     return RY_OK;
+}
+
+/* Separation x_j - x_i (minimum image) into dx; returns r^2. */
+static double pair_sep(const ry_sim *sim, size_t i, uint32_t j, double dx[3]) {
+    double r2 = 0;
+    dx[0] = dx[1] = dx[2] = 0;
+    for (int d = 0; d < sim->dim; ++d) dx[d] = sim->ps.f[RY_F_X + d][j] - sim->ps.f[RY_F_X + d][i];
+    ry_box_min_image(&sim->box, dx);
+    for (int d = 0; d < sim->dim; ++d) r2 += dx[d] * dx[d];
+    return r2;
 }
 
 /* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai
@@ -95,10 +108,8 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
         const uint32_t j = sim->nl.j[q];
         if (ps->kind[j] != RY_KIND_FLUID) continue;
-        double dx[3] = {0, 0, 0}, r2 = 0;
-        for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
-        ry_box_min_image(&sim->box, dx);
-        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        double dx[3];
+        const double r2 = pair_sep(sim, i, j, dx);
         if (r2 >= re2 || r2 <= 0) continue;
         const double r = sqrt(r2);
         const double f = csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re);
@@ -112,26 +123,54 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
  * tenth of its value on a flat surface; kappa = div n by the corrected (moment-matrix) divergence
  * over the neighbours that have a normal, exact for a linear normal field however one-sided the
  * neighbourhood; limited to radii of two spacings and up, then averaged over the neighbours
- * that have a normal. kappa holds 5 n doubles: kappa, then work space. */
+ * that have a normal. With st->curvature == RY_ST_CURV_SURFACE the normal comes from g smoothed
+ * over the neighbours and the divergence is the surface divergence (see below). kappa holds
+ * 8 n doubles: kappa, then work space. */
 void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *kappa) {
     const ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
     double *nrm = kappa + n;     /* 3 per particle; NAN in [0] where there is none */
     double *raw = kappa + 4 * n; /* the curvature before averaging */
+    double *gs = kappa + 5 * n;  /* 3 per particle: the colour gradient g */
     const double gmin = 0.1 * st->g_top;
+    const double re2 = st->re * st->re;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        nrm[3 * i] = NAN;
+        gs[3 * i] = gs[3 * i + 1] = gs[3 * i + 2] = 0;
         if (ps->kind[i] != RY_KIND_FLUID) continue;
         double g[3], count, gn = 0;
         st_sums(st, sim, i, g, &count);
         for (int d = 0; d < dim; ++d) gn += g[d] * g[d];
+        if (sqrt(gn) <= gmin) continue;
+        for (int d = 0; d < dim; ++d) gs[3 * i + d] = g[d];
+    }
+    /* RY_ST_CURV_SURFACE: the normal from g smoothed over the neighbours (weights w, the
+     * particle itself 1). On a staircase (a lattice circle) or a disordered surface the single
+     * g_i tilt back and forth with the particle's position, and a protruding particle, with the
+     * larger g, also reads the larger curvature: the force-weighted curvature of a lattice
+     * circle of radius 20 l0 is 1.50 times 1/R with the plain divergence of the unsmoothed
+     * normals, 1.20 times with this form (1.05 on concentric rings). */
+    const int surf = st->curvature == RY_ST_CURV_SURFACE;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        nrm[3 * i] = NAN;
+        if (gs[3 * i] == 0 && gs[3 * i + 1] == 0 && gs[3 * i + 2] == 0) continue;
+        double g[3] = {gs[3 * i], gs[3 * i + 1], gs[3 * i + 2]}, gn = 0;
+        for (size_t q = sim->nl.offset[i]; surf && q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            if (ps->kind[j] != RY_KIND_FLUID) continue;
+            const double r2 = pair_sep(sim, i, j, dx);
+            if (r2 >= re2 || r2 <= 0) continue;
+            const double w = ry_mps_weight_tamai(sqrt(r2), st->re);
+            for (int d = 0; d < dim; ++d) g[d] += w * gs[3 * j + d];
+        }
+        for (int d = 0; d < dim; ++d) gn += g[d] * g[d];
         gn = sqrt(gn);
-        if (gn <= gmin) continue;
+        if (!(gn > 0)) continue;
         for (int d = 0; d < 3; ++d) nrm[3 * i + d] = d < dim ? -g[d] / gn : 0.0;
     }
-    const double re2 = st->re * st->re;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         raw[i] = 0;
@@ -154,12 +193,20 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
                 }
             }
         }
-        double div = 0, y[3];
+        /* H[a][b] = d n_a / d x_b. RY_ST_CURV_SURFACE: the surface divergence
+         * tr((I - n n) H) = div n - n.H.n. The normal part n.H.n (d|n|^2/2 along n, zero for
+         * an exact unit field) is not zero on a noisy surface: the normals deeper in the band
+         * tilt more, their component along the surface normal falls inward, and div n reads
+         * too high. */
+        double div = 0, y[3], H[3][3] = {{0}};
         int ok = 1;
         for (int a = 0; a < dim && ok; ++a) {
             ok = ry_solve_small(dim, m, h[a], y);
-            div += y[a];
+            for (int b = 0; b < dim; ++b) H[a][b] = y[b];
         }
+        for (int a = 0; a < dim && ok; ++a)
+            for (int b = 0; b < dim; ++b)
+                div += ((a == b) - (surf ? nrm[3 * i + a] * nrm[3 * i + b] : 0.0)) * H[a][b];
         /* No curvature radius below two spacings: what is sharper is not resolved. */
         const double kmax = (dim - 1) / (2.0 * st->l0);
         raw[i] = ok ? fmax(fmin(div, kmax), -kmax) : 0.0;
@@ -204,7 +251,7 @@ ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, doub
         }
         return RY_OK;
     }
-    double *kappa = malloc(5 * n * sizeof *kappa);
+    double *kappa = malloc(8 * n * sizeof *kappa);
     RY_CHECK(err, kappa != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
     ry_st_curvature(st, sim, kappa);
 #pragma omp parallel for schedule(dynamic, 64)

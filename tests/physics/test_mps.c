@@ -115,6 +115,36 @@ static void test_square_drop_csf(void **state) {
     square_drop("csf", 0.10, 0.25);
 }
 
+/* A circular drop at rest, R = 2 mm (1,264 particles), CSF with the surface curvature
+ * (surface_tension.curvature: surface), 10 ms: the spurious currents stay small: the largest
+ * speed over the second half below 0.2 m/s (measured 0.103 m/s; the default curvature gives
+ * 0.53 m/s). The Laplace jump is printed but not asserted: it is 17.8 Pa against sigma/R =
+ * 36.4 Pa (-51 %), outside the 5 % target (docs/validation.md, drop at rest). */
+static void test_drop_rest_csf_surface(void **state) {
+    (void)state;
+    const char *sets[] = {"surface_tension.model=csf", "surface_tension.curvature=surface"};
+    ry_table s;
+    run("cases/mps_drop_rest_2d.yaml", "rest_csf", 2, sets, &s, NULL);
+    const int ct = ry_table_col(&s, "t"), cp = ry_table_col(&s, "drop_pressure"),
+              cv = ry_table_col(&s, "max_speed");
+    const double tend = ry_table_at(&s, s.nrows - 1, ct);
+    assert_true(tend > 0.0099);
+    double ps = 0, vmax = 0;
+    int cnt = 0;
+    for (size_t r = 0; r < s.nrows; ++r) {
+        if (ry_table_at(&s, r, ct) < 0.5 * tend) continue;
+        ps += ry_table_at(&s, r, cp);
+        vmax = fmax(vmax, ry_table_at(&s, r, cv));
+        ++cnt;
+    }
+    assert_true(cnt >= 10);
+    printf("drop at rest, CSF (surface curvature): p inside %.2f Pa (sigma/R %.2f Pa), largest "
+           "speed %.4f m/s\n",
+           ps / cnt, 0.0728 / 2e-3, vmax);
+    assert_true(vmax < 0.2);
+    ry_table_free(&s);
+}
+
 int main(void) {
     const char *r = getenv("RY_SOURCE_DIR");
     snprintf(root, sizeof root, "%s", r ? r : ".");
@@ -122,6 +152,7 @@ int main(void) {
         cmocka_unit_test(test_hydrostatic_column),
         cmocka_unit_test(test_square_drop_potential),
         cmocka_unit_test(test_square_drop_csf),
+        cmocka_unit_test(test_drop_rest_csf_surface),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
