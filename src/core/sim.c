@@ -339,13 +339,19 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     const double *x[3];
     const double reach = radius + skin;
     if (sim->nl_restore && radius == sim->nl_radius && ps->n > 0) {
-        /* After a restart: the list of the last build, from the positions it was built at. */
+        /* After a restart: the list of the last build, from the positions it was built at,
+         * then the same decision as in the uninterrupted run: reuse it, or search afresh
+         * (which reorders the particles when the scheme sorts at every search). */
         sim->nl_restore = 0;
         for (int d = 0; d < 3; ++d) x[d] = d < sim->dim ? ps->f[sim->f_xref + d] : NULL;
         RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
         sim->nl_generation++;
-        if (sim->cells_only) return RY_OK;
-        return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err);
+        if (!sim->cells_only)
+            RY_TRY(ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err));
+        if (skin > 0 && max_drift2(sim) < 0.25 * skin * skin) {
+            sim->nl_reuses++;
+            return RY_OK;
+        }
     }
     sim->nl_restore = 0;
     ry_particles_coords(ps, x);
