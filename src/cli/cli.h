@@ -2,9 +2,17 @@
 #ifndef RYUSHI_CLI_H
 #define RYUSHI_CLI_H
 
+#include "ryushi/csv.h"
+#include "ryushi/plot.h"
+
 int ry_cli_bench(int argc, char **argv);
 int ry_cli_plot(int argc, char **argv);
 int ry_cli_validate(int argc, char **argv);
+/* Adds column cy against column cx of a table, each scaled, as a series of a plot panel
+ * (validate_cmd.c); an error names a missing column. */
+ry_status ry_cli_add_series(ry_plot *p, int panel, const char *label, const ry_table *t,
+                            const char *cx, double sx, const char *cy, double sy,
+                            ry_plot_style style, ry_error *err);
 /* The cantilever validation (validate_solid.c); adds its failed checks to *failures. */
 int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int *failures);
 /* The oscillating plate and the filament buckling (validate_solid.c). */

@@ -54,7 +54,7 @@ static ry_status run_series(vctx *v, const char *case_file, const char *sub, int
     return ry_table_read(series, spath, err);
 }
 
-static ry_status add_series(ry_plot *p, int panel, const char *label, const ry_table *t,
+ry_status ry_cli_add_series(ry_plot *p, int panel, const char *label, const ry_table *t,
                             const char *cx, double sx, const char *cy, double sy,
                             ry_plot_style style, ry_error *err) {
     int ix = ry_table_col(t, cx), iy = ry_table_col(t, cy);
@@ -111,8 +111,8 @@ static int validate_dam_break(vctx *v) {
                np, cmp.max_dev, cmp.rms_dev, cmp.shift, cmp.max_dev_shifted, cmp.rms_dev_shifted,
                ry_mass_drift(&s), ry_column_max(&s, "outside"), ry_column_max(&s, "in_wall"), ws);
         snprintf(label, sizeof label, "ryushi a/%d", per_a[r]);
-        add_series(p, 0, label, &s, "t", sqrt(2 * g / a), "front_x", 1 / a, ry_plot_style_line(),
-                   &err);
+        ry_cli_add_series(p, 0, label, &s, "t", sqrt(2 * g / a), "front_x", 1 / a,
+                          ry_plot_style_line(), &err);
         char what[128];
         snprintf(what, sizeof what, "a/%d: fluid mass conserved to 1e-12", per_a[r]);
         verdict(v, what, ry_mass_drift(&s) <= 1e-12);
@@ -121,8 +121,8 @@ static int validate_dam_break(vctx *v) {
         verdict(v, what, ry_column_max(&s, "outside") == 0 && ry_column_max(&s, "in_wall") == 0);
         ry_table_free(&s);
     }
-    add_series(p, 0, "Martin & Moyce (1952)", &ref, "T", 1, "Z", 1,
-               ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    ry_cli_add_series(p, 0, "Martin & Moyce (1952)", &ref, "T", 1, "Z", 1,
+                      ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
     ry_plot_xrange(p, 0, 0, 3.5, &err);
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
 
@@ -157,7 +157,7 @@ static int validate_dam_break(vctx *v) {
         verdict(v, what,
                 ry_mass_drift(&s) <= 1e-12 && ry_column_max(&s, "outside") == 0 &&
                     ry_column_max(&s, "in_wall") == 0);
-        add_series(p, 1, seed_name[r], &s, "t", 1, "front_x", 1, ry_plot_style_line(), &err);
+        ry_cli_add_series(p, 1, seed_name[r], &s, "t", 1, "front_x", 1, ry_plot_style_line(), &err);
         ry_table_free(&s);
     }
     double sx[2] = {0.32, 0.32}, sy[2] = {0.2, 1.05};
@@ -234,19 +234,19 @@ static int validate_cavity(vctx *v) {
         /* The whole profiles (101 points; L = 1 m, U = 1 m/s, so metres and m/s are L and U). */
         snprintf(path, sizeof path, "%s/profile_u_vertical_centreline.csv", odir);
         if (ry_table_read(&cu, path, &err) == RY_OK) {
-            add_series(p, 0, label, &cu, "u", 1, "y", 1, ry_plot_style_line(), &err);
+            ry_cli_add_series(p, 0, label, &cu, "u", 1, "y", 1, ry_plot_style_line(), &err);
             ry_table_free(&cu);
         }
         snprintf(path, sizeof path, "%s/profile_v_horizontal_centreline.csv", odir);
         if (ry_table_read(&cv, path, &err) == RY_OK) {
-            add_series(p, 1, label, &cv, "x", 1, "v", 1, ry_plot_style_line(), &err);
+            ry_cli_add_series(p, 1, label, &cv, "x", 1, "v", 1, ry_plot_style_line(), &err);
             ry_table_free(&cv);
         }
     }
-    add_series(p, 0, "Ghia et al. (1982)", &gu, "u_over_U", 1, "y_over_L", 1,
-               ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
-    add_series(p, 1, "Ghia et al. (1982)", &gv, "x_over_L", 1, "v_over_U", 1,
-               ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    ry_cli_add_series(p, 0, "Ghia et al. (1982)", &gu, "u_over_U", 1, "y_over_L", 1,
+                      ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    ry_cli_add_series(p, 1, "Ghia et al. (1982)", &gv, "x_over_L", 1, "v_over_U", 1,
+                      ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_SE, &err);
     ry_plot_legend(p, 1, RY_PLOT_LEGEND_SW, &err);
     char png[4096];
@@ -364,13 +364,13 @@ static int validate_channel(vctx *v) {
         verdict(v, what, fabs(imb) <= 0.03);
         char label[64];
         snprintf(label, sizeof label, "ryushi, %d across", N[r]);
-        add_series(p, 0, label, &prof, "u", 1 / U, "y", 1 / H, ry_plot_style_line(), &err);
+        ry_cli_add_series(p, 0, label, &prof, "u", 1 / U, "y", 1 / H, ry_plot_style_line(), &err);
         snprintf(label, sizeof label, "inflow, %d across", N[r]);
-        add_series(p, 1, label, &s, "t", 1, "inflow_volume", 1 / (U * H * 4.0),
-                   ry_plot_style_line(), &err);
+        ry_cli_add_series(p, 1, label, &s, "t", 1, "inflow_volume", 1 / (U * H * 4.0),
+                          ry_plot_style_line(), &err);
         snprintf(label, sizeof label, "outflow, %d across", N[r]);
-        add_series(p, 1, label, &s, "t", 1, "outflow_volume", 1 / (U * H * 4.0),
-                   ry_plot_style_line(), &err);
+        ry_cli_add_series(p, 1, label, &s, "t", 1, "outflow_volume", 1 / (U * H * 4.0),
+                          ry_plot_style_line(), &err);
         ry_table_free(&s);
         ry_table_free(&prof);
     }

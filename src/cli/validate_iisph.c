@@ -48,25 +48,6 @@ static int fail(int *failures, const ry_error *err) {
     return 1;
 }
 
-/* Adds column cy against cx (scaled) of a series to a plot panel. */
-static void plot_columns(ry_plot *p, int panel, const char *label, const ry_table *t,
-                         const char *cx, double sx, const char *cy, double sy,
-                         ry_plot_style style) {
-    ry_error err;
-    int ix = ry_table_col(t, cx), iy = ry_table_col(t, cy);
-    if (ix < 0 || iy < 0) return;
-    double *x = ry_table_column(t, ix), *y = ry_table_column(t, iy);
-    if (x && y) {
-        for (size_t r = 0; r < t->nrows; ++r) {
-            x[r] *= sx;
-            y[r] *= sy;
-        }
-        ry_plot_series(p, panel, label, t->nrows, x, y, style, &err);
-    }
-    free(x);
-    free(y);
-}
-
 static void hydrostatic(const char *root, const char *out, int *failures) {
     ry_error err = {0};
     irun r;
@@ -149,7 +130,7 @@ static void dam_break(const char *root, const char *out, int quick, int *failure
             snprintf(label, sizeof label, "%s a/%d", sc ? "WCSPH" : "IISPH", per_a[k]);
             ry_plot_style st = ry_plot_style_line();
             if (sc) st.dash = RY_PLOT_DASH_DASHED;
-            plot_columns(p, 0, label, &r.s, "t", sqrt(2 * g / a), "front_x", 1 / a, st);
+            ry_cli_add_series(p, 0, label, &r.s, "t", sqrt(2 * g / a), "front_x", 1 / a, st, &err);
             if (!sc) {
                 char what[128];
                 snprintf(what, sizeof what, "IISPH a/%d: front RMS after the time shift <= 0.06",
@@ -163,8 +144,8 @@ static void dam_break(const char *root, const char *out, int quick, int *failure
             irun_free(&r);
         }
     }
-    plot_columns(p, 0, "Martin & Moyce (1952)", &ref, "T", 1, "Z", 1,
-                 ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE));
+    ry_cli_add_series(p, 0, "Martin & Moyce (1952)", &ref, "T", 1, "Z", 1,
+                      ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
     ry_plot_xrange(p, 0, 0, 3.5, &err);
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
     char png[4096];

@@ -34,23 +34,6 @@ static ry_status run_mps(const char *root, const char *out, const char *case_rel
     return st;
 }
 
-static void plot_column(ry_plot *p, int panel, const char *label, const ry_table *t,
-                        const char *col, double sx, double sy) {
-    ry_error err = {0};
-    const int ix = ry_table_col(t, "t"), iy = ry_table_col(t, col);
-    if (ix < 0 || iy < 0) return;
-    double *x = ry_table_column(t, ix), *y = ry_table_column(t, iy);
-    if (x && y) {
-        for (size_t r = 0; r < t->nrows; ++r) {
-            x[r] *= sx;
-            y[r] *= sy;
-        }
-        ry_plot_series(p, panel, label, t->nrows, x, y, ry_plot_style_line(), &err);
-    }
-    free(x);
-    free(y);
-}
-
 static void write_plot(ry_plot *p, const char *out, const char *name, int *failures) {
     ry_error err = {0};
     char png[4096];
@@ -160,7 +143,7 @@ static void run_drop(const char *root, const char *out, const drop_case *dc, con
             100 * *period_err, seed, stats.steps, its, sps, stats.wall_s);
     char label[64];
     snprintf(label, sizeof label, "%s", model);
-    plot_column(plot, panel, label, &s, "width_x", 1e3, 1e3);
+    ry_cli_add_series(plot, panel, label, &s, "t", 1e3, "width_x", 1e3, ry_plot_style_line(), &err);
     ry_sim_free(&sim);
     ry_table_free(&s);
 }
@@ -369,7 +352,8 @@ static void validate_dam_break_mps(const char *root, const char *out, int *failu
         printf("  %-8s %10zu %8.3f %8.3f %6.3f %8.3f %8.0f %8.0f %8.1f\n", names[k], sim.ps.n,
                cmp.max_dev, cmp.rms_dev, cmp.shift, cmp.rms_dev_shifted,
                ry_column_max(&s, "outside"), ry_column_max(&s, "in_wall"), stats.wall_s);
-        plot_column(p, 0, names[k], &s, "front_x", sqrt(2 * g / a), 1 / a);
+        ry_cli_add_series(p, 0, names[k], &s, "t", sqrt(2 * g / a), "front_x", 1 / a,
+                          ry_plot_style_line(), &err);
         if (k == 0) {
             check("MPS: front within 0.30 (max) and 0.20 (rms) of the experiment",
                   cmp.max_dev <= 0.30 && cmp.rms_dev <= 0.20, failures);
