@@ -156,6 +156,10 @@ struct ry_sim {
     int f_xref;         /* field: positions at the last build (x, y, z consecutive ids) */
     int nl_restore;     /* after a restart: rebuild the list from the positions at the last
                            build (xref), without reordering, so that it is the same list */
+    int drift_known;    /* set by a scheme whose drift loop also measured drift2, the largest
+                           squared displacement since the last build; the next
+                           ry_sim_neighbors uses it instead of measuring, and clears this */
+    double drift2;
 
     /* scheme */
     const ry_scheme_type *scheme;
@@ -185,6 +189,10 @@ struct ry_sim {
     /* reliability */
     ry_guard guard;
     ry_ckpt_policy ckpt;
+    int checked; /* set by a scheme whose last loop of a step also made the guard check
+                    (src/core/guard_check.h), with the tallies below; the run loop then gives
+                    the verdict without another pass, and clears this */
+    size_t check_first, check_fluid, check_outside;
     void *snapshot; /* the last good state (ry_sim_snapshot_*) */
 };
 

@@ -5,6 +5,7 @@
 
 #include "core/writer.h"
 #include "ryushi/sim.h"
+#include "core/guard_check.h"
 
 /* A checkpoint due after this step by the case's policy. */
 static int checkpoint_due(ry_sim *sim, double eps) {
@@ -74,6 +75,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         else if (sim->t + 2 * dt > target)
             dt = 0.5 * (target - sim->t);
         sim->dt = dt;
+        sim->checked = 0;
         st = sim->scheme->step(sim, sim->scheme_state, dt, err);
         if (st != RY_OK) {
             if (st == RY_ERR_UNSTABLE) keep_last_good(sim, err);
@@ -81,10 +83,14 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         }
         sim->t += dt;
         sim->step++;
+        if (sim->nopen > 0) sim->checked = 0; /* the particle set changes */
         st = ry_open_update(sim, err);
         if (st != RY_OK) goto done;
         psteps += (double)sim->ps.n;
-        st = ry_sim_check(sim, err);
+        st = sim->checked ? ry_check_verdict(sim, sim->check_first, sim->check_fluid,
+                                             sim->check_outside, err)
+                          : ry_sim_check(sim, err);
+        sim->checked = 0;
         if (st != RY_OK) {
             keep_last_good(sim, err);
             goto done;

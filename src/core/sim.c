@@ -10,6 +10,7 @@
 #include "core/writer.h"
 #include "ryushi/geometry.h"
 #include "ryushi/sim.h"
+#include "core/guard_check.h"
 
 double ry_wall_time(void) {
     struct timespec ts;
@@ -331,8 +332,10 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     const double skin = sim->nl_skin * radius;
     const int have = sim->cells_only ? sim->cells.start && sim->cells.n == ps->n
                                      : sim->nl.offset && sim->nl.n == ps->n;
+    const int known = sim->drift_known;
+    sim->drift_known = 0;
     if (have && !sim->nl_restore && radius == sim->nl_radius && skin > 0 &&
-        max_drift2(sim) < 0.25 * skin * skin) {
+        (known ? sim->drift2 : max_drift2(sim)) < 0.25 * skin * skin) {
         sim->nl_reuses++;
         return RY_OK;
     }
@@ -444,31 +447,24 @@ static const char *particle_problem(const ry_sim *sim, size_t i, char *why, size
     return NULL;
 }
 
-typedef struct check_ctx {
-    const double *const *x, *const *v, *rho, *p;
-    const uint8_t *kind, *material;
-    const double *inv_rho0, *lo, *hi;
-    double v2max, rmin, rmax;
-} check_ctx;
-
-/* Whether particle i passes every guard (out: whether it lies outside the domain); dim is a
- * literal at each call, so that the loops below compile for 2D and 3D separately. */
-static inline __attribute__((always_inline)) int check_one(const check_ctx *c, size_t i,
-                                                           const int dim, int *out) {
-    int ok = 1, o = 0;
-    double v2 = 0;
-    for (int d = 0; d < dim; ++d) {
-        const double xi = c->x[d][i], vi = c->v[d][i];
-        ok &= isfinite(xi) & isfinite(vi);
-        v2 += vi * vi;
-        o |= !(xi >= c->lo[d]) | !(xi < c->hi[d]);
+void ry_check_init(const ry_sim *sim, ry_check_ctx *c) {
+    const ry_particles *ps = &sim->ps;
+    const ry_guard *g = &sim->guard;
+    const int dim = sim->dim;
+    for (int m = 0; m < sim->nmat && m < 256; ++m) c->inv_rho0[m] = 1.0 / sim->mat[m].density;
+    c->v2max = g->max_speed > 0 ? g->max_speed * g->max_speed : INFINITY;
+    c->rmin = g->rho_min;
+    c->rmax = g->rho_max > 0 ? g->rho_max : INFINITY;
+    for (int d = 0; d < 3; ++d) {
+        c->x[d] = ps->f[RY_F_X + (d < dim ? d : 0)];
+        c->v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
     }
-    const double r = c->rho[i];
-    ok &= isfinite(c->p[i]) & (r > 0) & isfinite(r) & (v2 <= c->v2max);
-    const double q = r * c->inv_rho0[c->material[i]];
-    ok &= (c->kind[i] != RY_KIND_FLUID) | ((q >= c->rmin) & (q <= c->rmax));
-    *out = o;
-    return ok;
+    c->rho = ps->f[RY_F_RHO];
+    c->p = ps->f[RY_F_P];
+    c->kind = ps->kind;
+    c->material = ps->material;
+    c->lo = sim->box.lo;
+    c->hi = sim->box.hi;
 }
 
 /* Sets under 4096 particles are checked on one thread: for a beam of a few hundred particles a
@@ -476,40 +472,31 @@ static inline __attribute__((always_inline)) int check_one(const check_ctx *c, s
 /* clang-format off */
 #define RY_CHECK_LOOP_(DIM)                                                                        \
     _Pragma("omp parallel for schedule(static) reduction(min : first) reduction(+ : fluid, outside) if (n >= 4096)") \
-    for (size_t i = 0; i < n; ++i) {                                                               \
-        int out;                                                                                   \
-        const int ok = check_one(&c, i, DIM, &out);                                                \
-        const int isf = ps->kind[i] == RY_KIND_FLUID;                                              \
-        fluid += (size_t)isf;                                                                      \
-        outside += (size_t)(isf & out);                                                            \
-        first = ok ? first : (i < first ? i : first);                                              \
-    }
+    for (size_t i = 0; i < n; ++i) ry_check_tally(&c, i, DIM, &first, &fluid, &outside);
 /* clang-format on */
 
 ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
-    const ry_particles *ps = &sim->ps;
-    const ry_guard *g = &sim->guard;
-    const int dim = sim->dim;
-    const size_t n = ps->n;
-    double inv_rho0[256];
-    for (int m = 0; m < sim->nmat && m < 256; ++m) inv_rho0[m] = 1.0 / sim->mat[m].density;
-    const double v2max = g->max_speed > 0 ? g->max_speed * g->max_speed : INFINITY;
-    const double rmin = g->rho_min, rmax = g->rho_max > 0 ? g->rho_max : INFINITY;
-    const double *x[3], *v[3];
-    for (int d = 0; d < 3; ++d) {
-        x[d] = ps->f[RY_F_X + (d < dim ? d : 0)];
-        v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
-    }
-    const double *rho = ps->f[RY_F_RHO], *p = ps->f[RY_F_P];
+    const size_t n = sim->ps.n;
     size_t first = SIZE_MAX, fluid = 0, outside = 0;
-    check_ctx c = {x,        v,           rho,         p,     ps->kind, ps->material,
-                   inv_rho0, sim->box.lo, sim->box.hi, v2max, rmin,     rmax};
+    ry_check_ctx c;
+    ry_check_init(sim, &c);
     /* One pass without branches on the common path; the diagnosis is made afterwards. */
-    if (dim == 2) {
+    if (sim->dim == 2) {
         RY_CHECK_LOOP_(2)
     } else {
         RY_CHECK_LOOP_(3)
     }
+    return ry_check_verdict(sim, first, fluid, outside, err);
+}
+
+ry_status ry_check_verdict(const ry_sim *sim, size_t first, size_t fluid, size_t outside,
+                           ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    const ry_guard *g = &sim->guard;
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    const double *x[3];
+    for (int d = 0; d < 3; ++d) x[d] = ps->f[RY_F_X + (d < dim ? d : 0)];
     size_t bad = 0;
     char why[160], what[160] = "";
     if (first != SIZE_MAX) {

@@ -24,11 +24,13 @@
  *  time       kick-drift-kick leapfrog, second order, one force evaluation per step; forces
  *             are evaluated with the predicted velocity and density (v_n + dt a_n).
  *             dt = min(CFL h / (c0 + |v|max), 0.25 sqrt(h / |a|max), 0.125 h^2 / nu). */
+#include <float.h>
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/guard_check.h"
 #include "ryushi/sim.h"
 #include "sph/sph_pairs.h"
 #include "sph/wcsph.h"
@@ -457,7 +459,24 @@ static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double
 
 /* The pressure of the fluid (equation of state) and the records of the particles other than
  * walls (the wall pass writes the walls'), in one loop over contiguous arrays. */
+static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w);
+static int uniform_materials(const ry_sim *sim, const wcsph *w);
+
+/* Whether every material has the density and viscosity of the first, and the equation of
+ * state is Tait or linear (the cell-range loop's single-material passes). */
+static int uniform_materials(const ry_sim *sim, const wcsph *w) {
+    int same = w->eos != EOS_IDEAL_GAS;
+    for (int m = 1; m < sim->nmat; ++m)
+        same &= sim->mat[m].density == sim->mat[0].density &&
+                sim->mat[m].viscosity == sim->mat[0].viscosity;
+    return same;
+}
+
 static void fpack_fluid(ry_sim *sim, const wcsph *w) {
+    if (uniform_materials(sim, w)) {
+        fpack_fluid_one_rho0(sim, w);
+        return;
+    }
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n, fs = w->fpack_stride;
     const int dim = sim->dim, laminar = w->laminar;
@@ -494,6 +513,106 @@ static void fpack_fluid(ry_sim *sim, const wcsph *w) {
         fk[FK_FLUID * fs + i] = kind[i] == RY_KIND_FLUID || kind[i] == RY_KIND_OUTLET;
         fk[FK_VISC * fs + i] = 1.0f; /* not a wall */
         fk[FK_P * fs + i] = (float)p[i];
+    }
+}
+
+/* fpack_fluid for one reference density and the Tait or linear equation of state: one pass
+ * per array, so that each vectorises; walls get inert records until the wall pass. */
+static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n, fs = w->fpack_stride;
+    const int dim = sim->dim;
+    const uint8_t *restrict kind = ps->kind;
+    const double *restrict rho = ps->f[RY_F_RHO], *restrict m = ps->f[RY_F_MASS];
+    double *restrict p = ps->f[RY_F_P];
+    double *restrict xp = w->fpack;
+    float *restrict fk = (float *)(xp + 3 * fs);
+    const double rho0 = w->rho0m[0], B = w->Bm[0], pb = w->p_background;
+    const double c02 = w->c0 * w->c0;
+    const int tait7 = w->eos == EOS_TAIT && w->gamma == 7.0, linear = w->eos == EOS_LINEAR;
+    const double nu = w->laminar ? sim->mat[0].viscosity : 0.0;
+#pragma omp parallel
+    {
+        for (int d = 0; d < dim; ++d) {
+            const double *restrict x = ps->f[RY_F_X + d], *restrict v = ps->f[RY_F_VX + d];
+            double *restrict xd = xp + (size_t)d * fs;
+            float *restrict u = fk + (FK_U + d) * fs, *restrict ug = fk + (FK_UG + d) * fs;
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i) {
+                xd[i] = x[i];
+                u[i] = ug[i] = (float)v[i]; /* walls: rewritten by the wall pass */
+            }
+        }
+        if (tait7 || linear) {
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i) {
+                const double q = rho[i] / rho0, q2 = q * q;
+                const double pt =
+                    tait7 ? B * (q2 * q2 * q2 * q - 1.0) + pb : c02 * (rho[i] - rho0) + pb;
+                p[i] = kind[i] == RY_KIND_FLUID ? pt : p[i];
+            }
+        } else {
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i)
+                if (kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, 0, rho[i], 0.0);
+        }
+        float *restrict fdr = fk + FK_DRHO * fs, *restrict fpr = fk + FK_PRHO2 * fs;
+        float *restrict fvol = fk + FK_VOL * fs, *restrict fmu = fk + FK_MU * fs;
+        float *restrict fm = fk + FK_MASS * fs, *restrict ffl = fk + FK_FLUID * fs;
+        float *restrict fvi = fk + FK_VISC * fs, *restrict fp = fk + FK_P * fs;
+#pragma omp for schedule(static) nowait
+        for (size_t i = 0; i < n; ++i) {
+            /* Walls stay inert until the wall pass (it reads every candidate, masked). */
+            const float on = kind[i] == RY_KIND_WALL ? 0.0f : 1.0f;
+            const double inv_rho = 1.0 / rho[i];
+            fdr[i] = on * (float)(rho[i] - rho0);
+            fpr[i] = on * (float)(p[i] * inv_rho * inv_rho);
+            fvol[i] = on * (float)(m[i] * inv_rho);
+            fmu[i] = on * (float)(rho[i] * nu);
+            fm[i] = on * (float)m[i];
+            ffl[i] = kind[i] == RY_KIND_FLUID ? 1.0f : 0.0f;
+            fvi[i] = on;
+            fp[i] = on * (float)p[i];
+        }
+    }
+}
+
+/* The walls' records after the wall pass (fpack_one for each wall), for uniform materials:
+ * one pass per array, the other particles' entries kept. */
+static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n, fs = w->fpack_stride;
+    const int dim = sim->dim;
+    const uint8_t *restrict kind = ps->kind;
+    const double *restrict rho = ps->f[RY_F_RHO], *restrict m = ps->f[RY_F_MASS];
+    const double *restrict p = ps->f[RY_F_P];
+    float *restrict fk = (float *)((double *)w->fpack + 3 * fs);
+    const double rho0 = w->rho0m[0], nu = w->laminar ? sim->mat[0].viscosity : 0.0;
+    const float visc = w->wall == WALL_NO_SLIP ? 1.0f : 0.0f;
+#pragma omp parallel
+    {
+        for (int d = 0; d < dim; ++d) {
+            const double *restrict vg = ps->f[w->f_vg[d]];
+            float *restrict ug = fk + (FK_UG + d) * fs;
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i) ug[i] = kind[i] == RY_KIND_WALL ? (float)vg[i] : ug[i];
+        }
+        float *restrict fdr = fk + FK_DRHO * fs, *restrict fpr = fk + FK_PRHO2 * fs;
+        float *restrict fvol = fk + FK_VOL * fs, *restrict fmu = fk + FK_MU * fs;
+        float *restrict fm = fk + FK_MASS * fs, *restrict fvi = fk + FK_VISC * fs;
+        float *restrict fp = fk + FK_P * fs;
+#pragma omp for schedule(static) nowait
+        for (size_t i = 0; i < n; ++i) {
+            const int wall = kind[i] == RY_KIND_WALL;
+            const double inv_rho = 1.0 / rho[i];
+            fdr[i] = wall ? (float)(rho[i] - rho0) : fdr[i];
+            fpr[i] = wall ? (float)(p[i] * inv_rho * inv_rho) : fpr[i];
+            fvol[i] = wall ? (float)(m[i] * inv_rho) : fvol[i];
+            fmu[i] = wall ? (float)(rho[i] * nu) : fmu[i];
+            fm[i] = wall ? (float)m[i] : fm[i];
+            fvi[i] = wall ? visc : fvi[i];
+            fp[i] = wall ? (float)p[i] : fp[i];
+        }
     }
 }
 
@@ -802,8 +921,8 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
     }
     if (c->cont) c->drho[i] = rhoi * dr + c->diff * dd;
     if (energy) c->de[i] = dei;
-    *amax2 = fmax(*amax2, a2);
-    *vmax2 = fmax(*vmax2, v2);
+    *amax2 = a2 > *amax2 ? a2 : *amax2;
+    *vmax2 = v2 > *vmax2 ? v2 : *vmax2;
 }
 
 /* The kernels the pair loops are compiled for, and a row of a driver table: [kernel][dim - 2]
@@ -1005,8 +1124,8 @@ static inline __attribute__((always_inline)) void fast_particle(const fast_ctx *
         v2 += c->v[d][i] * c->v[d][i];
     }
     if (c->cont) c->drho[i] = c->rho[i] * v8_sum(sr) + c->diff * v8_sum(sd);
-    *amax2 = fmax(*amax2, a2);
-    *vmax2 = fmax(*vmax2, v2);
+    *amax2 = a2 > *amax2 ? a2 : *amax2;
+    *vmax2 = v2 > *vmax2 ? v2 : *vmax2;
 }
 
 typedef void (*fast_driver)(const fast_ctx *c, size_t n, force_out *res);
@@ -1065,61 +1184,83 @@ static ry_status fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
     const size_t *start = cl->start;
     const int nx = cl->ncell[0], ny = cl->ncell[1], nz = cl->ncell[2];
     uint32_t *rng = w->rng;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) {
-        const size_t cell = cl->cell_of[i];
-        const int kx = (int)(cell % (size_t)nx), ky = (int)(cell / (size_t)nx % (size_t)ny);
-        const int kz = dim > 2 ? (int)(cell / ((size_t)nx * (size_t)ny)) : 0;
-        const int xa = kx > 0 ? kx - 1 : 0, xb = kx + 1 < nx ? kx + 1 : nx - 1;
-        const double lo = xr[i] - reach, hi = xr[i] + reach;
-        uint32_t *rg = rng + i * 2 * (size_t)nrange;
-        int nr = 0;
-        for (int z = kz - 1; z <= kz + 1; ++z) {
-            if (dim < 3 && z != kz) continue;
-            if (z < 0 || z >= nz) continue;
-            for (int y = ky - 1; y <= ky + 1; ++y) {
-                if (y < 0 || y >= ny) continue;
-                const size_t row = ((size_t)z * (size_t)ny + (size_t)y) * (size_t)nx;
-                size_t a = start[row + (size_t)xa], b = start[row + (size_t)xb + 1];
-                /* first with x >= lo, first with x > hi */
-                size_t l = a, u = b;
-                while (l < u) {
-                    const size_t m = l + (u - l) / 2;
-                    if (xr[m] < lo)
-                        l = m + 1;
-                    else
-                        u = m;
-                }
-                a = l;
-                u = b;
-                while (l < u) {
-                    const size_t m = l + (u - l) / 2;
-                    if (xr[m] <= hi)
-                        l = m + 1;
-                    else
-                        u = m;
-                }
-                b = l;
-                if (b <= a) continue;
-                if (nr > 0 && a < rg[2 * nr - 1]) {
-                    const size_t a0 = rg[2 * nr - 2];
-                    rg[2 * nr - 1] = (uint32_t)(a0 + ((b - a0 + 7) & ~(size_t)7));
-                } else {
-                    rg[2 * nr] = (uint32_t)a;
-                    rg[2 * nr + 1] = (uint32_t)(a + ((b - a + 7) & ~(size_t)7));
-                    ++nr;
+#pragma omp parallel
+    {
+        /* The bounds of the previous particle, per row slot: within a cell the particles come
+         * in order of x, so the bounds only move forward and a particle after the first of its
+         * cell finds them by stepping on from there (a binary search otherwise). */
+        size_t prev_cell = SIZE_MAX, lb[9], ub[9];
+        double prev_x = 0;
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; ++i) {
+            const size_t cell = cl->cell_of[i];
+            const int kx = (int)(cell % (size_t)nx), ky = (int)(cell / (size_t)nx % (size_t)ny);
+            const int kz = dim > 2 ? (int)(cell / ((size_t)nx * (size_t)ny)) : 0;
+            const int xa = kx > 0 ? kx - 1 : 0, xb = kx + 1 < nx ? kx + 1 : nx - 1;
+            const double lo = xr[i] - reach, hi = xr[i] + reach;
+            const int sweep = cell == prev_cell && xr[i] >= prev_x;
+            prev_cell = cell;
+            prev_x = xr[i];
+            uint32_t *rg = rng + i * 2 * (size_t)nrange;
+            int nr = 0;
+            for (int z = kz - 1; z <= kz + 1; ++z) {
+                if (dim < 3 && z != kz) continue;
+                if (z < 0 || z >= nz) continue;
+                for (int y = ky - 1; y <= ky + 1; ++y) {
+                    if (y < 0 || y >= ny) continue;
+                    const int slot = (z - kz + 1) * 3 + (y - ky + 1);
+                    const size_t row = ((size_t)z * (size_t)ny + (size_t)y) * (size_t)nx;
+                    const size_t b0 = start[row + (size_t)xb + 1];
+                    size_t a, b;
+                    if (sweep) {
+                        /* first with x >= lo, first with x > hi */
+                        a = lb[slot];
+                        while (a < b0 && xr[a] < lo) ++a;
+                        b = ub[slot] > a ? ub[slot] : a;
+                        while (b < b0 && xr[b] <= hi) ++b;
+                    } else {
+                        size_t l = start[row + (size_t)xa], u = b0;
+                        while (l < u) {
+                            const size_t m = l + (u - l) / 2;
+                            if (xr[m] < lo)
+                                l = m + 1;
+                            else
+                                u = m;
+                        }
+                        a = l;
+                        u = b0;
+                        while (l < u) {
+                            const size_t m = l + (u - l) / 2;
+                            if (xr[m] <= hi)
+                                l = m + 1;
+                            else
+                                u = m;
+                        }
+                        b = l;
+                    }
+                    lb[slot] = a;
+                    ub[slot] = b;
+                    if (b <= a) continue;
+                    if (nr > 0 && a < rg[2 * nr - 1]) {
+                        const size_t a0 = rg[2 * nr - 2];
+                        rg[2 * nr - 1] = (uint32_t)(a0 + ((b - a0 + 7) & ~(size_t)7));
+                    } else {
+                        rg[2 * nr] = (uint32_t)a;
+                        rg[2 * nr + 1] = (uint32_t)(a + ((b - a + 7) & ~(size_t)7));
+                        ++nr;
+                    }
                 }
             }
+            for (; nr < nrange; ++nr) rg[2 * nr] = rg[2 * nr + 1] = 0;
+            /* Whether a wall particle has fluid among its candidates (its pass is skipped if not:
+             * its sums would be exactly zero). The kinds do not change between searches. */
+            uint8_t wet = 0;
+            if (wall_like(&sim->ps, i))
+                for (int r = 0; r < nrange && !wet; ++r)
+                    for (size_t j = rg[2 * r]; j < rg[2 * r + 1] && j < n && !wet; ++j)
+                        wet = sim->ps.kind[j] == RY_KIND_FLUID;
+            w->wet[i] = wet;
         }
-        for (; nr < nrange; ++nr) rg[2 * nr] = rg[2 * nr + 1] = 0;
-        /* Whether a wall particle has fluid among its candidates (its pass is skipped if not:
-         * its sums would be exactly zero). The kinds do not change between searches. */
-        uint8_t wet = 0;
-        if (wall_like(&sim->ps, i))
-            for (int r = 0; r < nrange && !wet; ++r)
-                for (size_t j = rg[2 * r]; j < rg[2 * r + 1] && j < n && !wet; ++j)
-                    wet = sim->ps.kind[j] == RY_KIND_FLUID;
-        w->wet[i] = wet;
     }
     w->rng_gen = sim->nl_generation;
     return RY_OK;
@@ -1190,6 +1331,10 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
             wall_set(sim, w, i, &s);                                                               \
         }                                                                                          \
         /* The walls' records, once no thread reads them any more. */                              \
+        if (uniform_materials(sim, w)) {                                                           \
+            fpack_walls_one_rho0(sim, w);                                                          \
+            return;                                                                                \
+        }                                                                                          \
         _Pragma("omp parallel for schedule(static)") for (size_t i = 0; i < n; ++i) {              \
             if (wall_like(&sim->ps, i))                                                            \
                 fpack_one(sim, w, i, pack_mu(sim, w, i), pack_visc(sim, w, i));                    \
@@ -1326,8 +1471,8 @@ tvf_particle(const ry_sim *sim, const wcsph *w, size_t i, const int dim, const r
         ps->f[w->f_abg[d]][i] = -w->p_tvf / m[i] * bi[d];
         a2 += ai[d] * ai[d];
     }
-    *amax2 = fmax(*amax2, a2);
-    *vmax2 = fmax(*vmax2, v2);
+    *amax2 = a2 > *amax2 ? a2 : *amax2;
+    *vmax2 = v2 > *vmax2 ? v2 : *vmax2;
 }
 
 typedef void (*tvf_driver)(ry_sim *sim, const wcsph *w, force_out *res);
@@ -1454,68 +1599,242 @@ static ry_status wcsph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     return RY_OK;
 }
 
+/* The first half kick and the drift of particle i (leapfrog). */
+static inline __attribute__((always_inline)) void kick_drift(ry_sim *sim, const wcsph *w, size_t i,
+                                                             double dt, int cont) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    /* Outlet buffers move as fluid, at the outlet's pressure and the reference density. */
+    const int outlet = ps->kind[i] == RY_KIND_OUTLET;
+    if (ps->kind[i] != RY_KIND_FLUID && !outlet) {
+        if (ps->kind[i] == RY_KIND_INLET) /* inflow buffers drift at the inlet velocity */
+            for (int d = 0; d < dim; ++d) ps->f[RY_F_X + d][i] += dt * ps->f[RY_F_VX + d][i];
+        return;
+    }
+    for (int d = 0; d < dim; ++d) {
+        double vh = ps->f[RY_F_VX + d][i] + 0.5 * dt * ps->f[RY_F_AX + d][i];
+        ps->f[w->f_vh[d]][i] = vh;
+        if (w->tvf) {
+            /* Particles move with the transport velocity (Adami et al. 2013, eq. 13). */
+            double vt = vh + 0.5 * dt * ps->f[w->f_abg[d]][i];
+            ps->f[w->f_vt[d]][i] = vt;
+            ps->f[RY_F_X + d][i] += dt * vt;
+        } else {
+            ps->f[RY_F_X + d][i] += dt * vh;
+        }
+        ps->f[RY_F_VX + d][i] = vh + 0.5 * dt * ps->f[RY_F_AX + d][i];
+    }
+    if (outlet) return;
+    if (cont) {
+        double rh = ps->f[RY_F_RHO][i] + 0.5 * dt * ps->f[RY_F_DRHO][i];
+        ps->f[w->f_rhoh][i] = rh;
+        ps->f[RY_F_RHO][i] = rh + 0.5 * dt * ps->f[RY_F_DRHO][i];
+    }
+    if (w->energy) {
+        double eh = ps->f[RY_F_E][i] + 0.5 * dt * ps->f[RY_F_DE][i];
+        ps->f[w->f_eh][i] = eh;
+        ps->f[RY_F_E][i] = eh + 0.5 * dt * ps->f[RY_F_DE][i];
+    }
+    if (w->variable_h) {
+        double dh = -ps->f[RY_F_H][i] / (dim * ps->f[RY_F_RHO][i]) * ps->f[RY_F_DRHO][i];
+        double hh = ps->f[RY_F_H][i] + 0.5 * dt * dh;
+        ps->f[w->f_hh][i] = hh;
+        ps->f[RY_F_H][i] = hh + 0.5 * dt * dh;
+    }
+}
+
+/* The second half kick of particle i, with the rates at the new positions. */
+static inline __attribute__((always_inline)) void final_kick(ry_sim *sim, const wcsph *w, size_t i,
+                                                             double dt, int cont) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    if (ps->kind[i] != RY_KIND_FLUID && ps->kind[i] != RY_KIND_OUTLET) return;
+    for (int d = 0; d < dim; ++d)
+        ps->f[RY_F_VX + d][i] = ps->f[w->f_vh[d]][i] + 0.5 * dt * ps->f[RY_F_AX + d][i];
+    if (ps->kind[i] == RY_KIND_OUTLET) return;
+    if (cont) ps->f[RY_F_RHO][i] = ps->f[w->f_rhoh][i] + 0.5 * dt * ps->f[RY_F_DRHO][i];
+    if (w->energy) ps->f[RY_F_E][i] = ps->f[w->f_eh][i] + 0.5 * dt * ps->f[RY_F_DE][i];
+    if (w->variable_h) {
+        double dh = -ps->f[RY_F_H][i] / (dim * ps->f[RY_F_RHO][i]) * ps->f[RY_F_DRHO][i];
+        ps->f[RY_F_H][i] = ps->f[w->f_hh][i] + 0.5 * dt * dh;
+    }
+}
+
+/* The leapfrog loops of the cell-range loop's cases (fluid and fixed walls; no energy,
+ * variable h, transport velocity or open boundaries), one contiguous pass per array so that
+ * they vectorise. Each thread keeps the particles of its static share through the passes of a
+ * region, so the passes need no barrier between them. Walls keep their values. */
+static double fast_kick_drift(ry_sim *sim, const wcsph *w, double dt, int cont) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const double hdt = 0.5 * dt;
+    const uint8_t *restrict kind = ps->kind;
+    double m = 0;
+#pragma omp parallel
+    {
+        for (int d = 0; d < dim; ++d) {
+            double *restrict x = ps->f[RY_F_X + d], *restrict v = ps->f[RY_F_VX + d];
+            double *restrict vh = ps->f[w->f_vh[d]];
+            const double *restrict a = ps->f[RY_F_AX + d];
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i) {
+                const int f = kind[i] == RY_KIND_FLUID;
+                const double h = v[i] + hdt * a[i];
+                vh[i] = f ? h : vh[i];
+                x[i] = f ? x[i] + dt * h : x[i];
+                v[i] = f ? h + hdt * a[i] : v[i];
+            }
+        }
+        if (cont) {
+            double *restrict rho = ps->f[RY_F_RHO], *restrict rh = ps->f[w->f_rhoh];
+            const double *restrict dr = ps->f[RY_F_DRHO];
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i) {
+                const int f = kind[i] == RY_KIND_FLUID;
+                const double h = rho[i] + hdt * dr[i];
+                rh[i] = f ? h : rh[i];
+                rho[i] = f ? h + hdt * dr[i] : rho[i];
+            }
+        }
+        const double *restrict x0 = ps->f[RY_F_X], *restrict x1 = ps->f[RY_F_Y];
+        const double *restrict x2 = ps->f[dim > 2 ? RY_F_Z : RY_F_Y];
+        const double *restrict r0 = ps->f[sim->f_xref], *restrict r1 = ps->f[sim->f_xref + 1];
+        const double *restrict r2 = ps->f[sim->f_xref + (dim > 2 ? 2 : 1)];
+        const double z = dim > 2 ? 1.0 : 0.0;
+#pragma omp for simd schedule(static) nowait reduction(max : m)
+        for (size_t i = 0; i < n; ++i) {
+            const double e0 = x0[i] - r0[i], e1 = x1[i] - r1[i], e2 = z * (x2[i] - r2[i]);
+            const double q = e0 * e0 + e1 * e1 + e2 * e2;
+            m = q > m ? q : m;
+        }
+    }
+    return m;
+}
+
+/* The second half kick and the guard check (src/core/guard_check.h) in one region. */
+static void fast_final_kick(ry_sim *sim, const wcsph *w, double dt, int cont) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const double hdt = 0.5 * dt;
+    const uint8_t *restrict kind = ps->kind;
+    ry_check_ctx chk;
+    ry_check_init(sim, &chk);
+    size_t first = SIZE_MAX, fluid = 0, outside = 0, nbad = 0;
+    int one_rho0 = 1;
+    for (int m = 1; m < sim->nmat; ++m) one_rho0 &= sim->mat[m].density == sim->mat[0].density;
+#pragma omp parallel
+    {
+        for (int d = 0; d < dim; ++d) {
+            double *restrict v = ps->f[RY_F_VX + d];
+            const double *restrict vh = ps->f[w->f_vh[d]], *restrict a = ps->f[RY_F_AX + d];
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i)
+                v[i] = kind[i] == RY_KIND_FLUID ? vh[i] + hdt * a[i] : v[i];
+        }
+        if (cont) {
+            double *restrict rho = ps->f[RY_F_RHO];
+            const double *restrict rh = ps->f[w->f_rhoh], *restrict dr = ps->f[RY_F_DRHO];
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i)
+                rho[i] = kind[i] == RY_KIND_FLUID ? rh[i] + hdt * dr[i] : rho[i];
+        }
+        if (one_rho0) {
+            /* One reference density: the same tests as ry_check_one over contiguous arrays. */
+            const double *restrict x0 = chk.x[0], *restrict x1 = chk.x[1], *restrict x2 = chk.x[2];
+            const double *restrict v0 = chk.v[0], *restrict v1 = chk.v[1], *restrict v2 = chk.v[2];
+            const double *restrict rho = chk.rho, *restrict p = chk.p;
+            const double inv0 = chk.inv_rho0[0], v2max = chk.v2max, rmin = chk.rmin,
+                         rmax = chk.rmax;
+            const double lo0 = chk.lo[0], lo1 = chk.lo[1], lo2 = dim > 2 ? chk.lo[2] : -INFINITY;
+            const double hi0 = chk.hi[0], hi1 = chk.hi[1], hi2 = dim > 2 ? chk.hi[2] : INFINITY;
+            const double z = dim > 2 ? 1.0 : 0.0;
+#pragma omp for simd schedule(static) nowait reduction(+ : nbad, fluid, outside)
+            for (size_t i = 0; i < n; ++i) {
+                const double a0 = x0[i], a1 = x1[i], a2 = z * x2[i];
+                const double b0 = v0[i], b1 = v1[i], b2 = z * v2[i], r = rho[i];
+                const double q = r * inv0, sp = b0 * b0 + b1 * b1 + b2 * b2;
+                const int isf = kind[i] == RY_KIND_FLUID;
+                const int fin = (fabs(a0) <= DBL_MAX) & (fabs(a1) <= DBL_MAX) &
+                                (fabs(a2) <= DBL_MAX) & (fabs(b0) <= DBL_MAX) &
+                                (fabs(b1) <= DBL_MAX) & (fabs(b2) <= DBL_MAX) &
+                                (fabs(p[i]) <= DBL_MAX) & (r > 0) & (r <= DBL_MAX);
+                const int ok = fin & (sp <= v2max) & ((isf == 0) | ((q >= rmin) & (q <= rmax)));
+                const int in = (a0 >= lo0) & (a0 < hi0) & (a1 >= lo1) & (a1 < hi1) &
+                               (x2[i] >= lo2) & (x2[i] < hi2);
+                fluid += (size_t)isf;
+                outside += (size_t)(isf & (in == 0));
+                nbad += (size_t)(ok == 0); /* the verdict finds them */
+            }
+        } else if (dim == 2) {
+#pragma omp for schedule(static) nowait reduction(min : first) reduction(+ : fluid, outside)
+            for (size_t i = 0; i < n; ++i) ry_check_tally(&chk, i, 2, &first, &fluid, &outside);
+        } else {
+#pragma omp for schedule(static) nowait reduction(min : first) reduction(+ : fluid, outside)
+            for (size_t i = 0; i < n; ++i) ry_check_tally(&chk, i, 3, &first, &fluid, &outside);
+        }
+    }
+    if (nbad > 0) first = 0;
+    sim->check_first = first;
+    sim->check_fluid = fluid;
+    sim->check_outside = outside;
+    sim->checked = 1;
+}
+
 static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     wcsph *w = state;
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const int cont = w->density == DENS_CONTINUITY;
     size_t n = ps->n;
-    /* Kick (half step) and drift; then predict v and rho at the new time for the forces. */
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) {
-        /* Outlet buffers move as fluid, at the outlet's pressure and the reference density. */
-        const int outlet = ps->kind[i] == RY_KIND_OUTLET;
-        if (ps->kind[i] != RY_KIND_FLUID && !outlet) {
-            if (ps->kind[i] == RY_KIND_INLET) /* inflow buffers drift at the inlet velocity */
-                for (int d = 0; d < dim; ++d) ps->f[RY_F_X + d][i] += dt * ps->f[RY_F_VX + d][i];
-            continue;
-        }
-        for (int d = 0; d < dim; ++d) {
-            double vh = ps->f[RY_F_VX + d][i] + 0.5 * dt * ps->f[RY_F_AX + d][i];
-            ps->f[w->f_vh[d]][i] = vh;
-            if (w->tvf) {
-                /* Particles move with the transport velocity (Adami et al. 2013, eq. 13). */
-                double vt = vh + 0.5 * dt * ps->f[w->f_abg[d]][i];
-                ps->f[w->f_vt[d]][i] = vt;
-                ps->f[RY_F_X + d][i] += dt * vt;
-            } else {
-                ps->f[RY_F_X + d][i] += dt * vh;
-            }
-            ps->f[RY_F_VX + d][i] = vh + 0.5 * dt * ps->f[RY_F_AX + d][i];
-        }
-        if (outlet) continue;
-        if (cont) {
-            double rh = ps->f[RY_F_RHO][i] + 0.5 * dt * ps->f[RY_F_DRHO][i];
-            ps->f[w->f_rhoh][i] = rh;
-            ps->f[RY_F_RHO][i] = rh + 0.5 * dt * ps->f[RY_F_DRHO][i];
-        }
-        if (w->energy) {
-            double eh = ps->f[RY_F_E][i] + 0.5 * dt * ps->f[RY_F_DE][i];
-            ps->f[w->f_eh][i] = eh;
-            ps->f[RY_F_E][i] = eh + 0.5 * dt * ps->f[RY_F_DE][i];
-        }
-        if (w->variable_h) {
-            double dh = -ps->f[RY_F_H][i] / (dim * ps->f[RY_F_RHO][i]) * ps->f[RY_F_DRHO][i];
-            double hh = ps->f[RY_F_H][i] + 0.5 * dt * dh;
-            ps->f[w->f_hh][i] = hh;
-            ps->f[RY_F_H][i] = hh + 0.5 * dt * dh;
-        }
+    /* Kick (half step) and drift; then predict v and rho at the new time for the forces. The
+     * same loop measures the largest displacement since the last neighbour search. */
+    if (w->fast) {
+        sim->drift2 = fast_kick_drift(sim, w, dt, cont);
+        sim->drift_known = 1;
+        RY_TRY(evaluate(sim, w, err)); /* may reorder particles: fields move together */
+        fast_final_kick(sim, w, dt, cont);
+        return RY_OK;
     }
+    const double *xref[3];
+    for (int d = 0; d < 3; ++d) xref[d] = ps->f[sim->f_xref + (d < dim ? d : 0)];
+    double drift2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : drift2)
+    for (size_t i = 0; i < n; ++i) {
+        kick_drift(sim, w, i, dt, cont);
+        double r2 = 0;
+        for (int d = 0; d < dim; ++d) {
+            const double e = ps->f[RY_F_X + d][i] - xref[d][i];
+            r2 += e * e;
+        }
+        drift2 = r2 > drift2 ? r2 : drift2;
+    }
+    sim->drift2 = drift2;
+    sim->drift_known = 1;
     RY_TRY(evaluate(sim, w, err)); /* may reorder particles: fields move together */
     n = ps->n;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID && ps->kind[i] != RY_KIND_OUTLET) continue;
-        for (int d = 0; d < dim; ++d)
-            ps->f[RY_F_VX + d][i] = ps->f[w->f_vh[d]][i] + 0.5 * dt * ps->f[RY_F_AX + d][i];
-        if (ps->kind[i] == RY_KIND_OUTLET) continue;
-        if (cont) ps->f[RY_F_RHO][i] = ps->f[w->f_rhoh][i] + 0.5 * dt * ps->f[RY_F_DRHO][i];
-        if (w->energy) ps->f[RY_F_E][i] = ps->f[w->f_eh][i] + 0.5 * dt * ps->f[RY_F_DE][i];
-        if (w->variable_h) {
-            double dh = -ps->f[RY_F_H][i] / (dim * ps->f[RY_F_RHO][i]) * ps->f[RY_F_DRHO][i];
-            ps->f[RY_F_H][i] = ps->f[w->f_hh][i] + 0.5 * dt * dh;
+    /* The second half kick, and the guard check of the new state in the same pass. */
+    ry_check_ctx chk;
+    ry_check_init(sim, &chk);
+    size_t first = SIZE_MAX, fluid = 0, outside = 0;
+    if (dim == 2) {
+#pragma omp parallel for schedule(static) reduction(min : first) reduction(+ : fluid, outside)
+        for (size_t i = 0; i < n; ++i) {
+            final_kick(sim, w, i, dt, cont);
+            ry_check_tally(&chk, i, 2, &first, &fluid, &outside);
+        }
+    } else {
+#pragma omp parallel for schedule(static) reduction(min : first) reduction(+ : fluid, outside)
+        for (size_t i = 0; i < n; ++i) {
+            final_kick(sim, w, i, dt, cont);
+            ry_check_tally(&chk, i, 3, &first, &fluid, &outside);
         }
     }
+    sim->check_first = first;
+    sim->check_fluid = fluid;
+    sim->check_outside = outside;
+    sim->checked = 1;
     return RY_OK;
 }
 
