@@ -27,6 +27,7 @@
 #include <float.h>
 #include <math.h>
 #include <omp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -1026,10 +1027,13 @@ static inline int v8_any(v8i m) {
     return a != 0;
 #endif
 }
+/* The sum of the lanes, in double precision: halves added, then pairs. */
 static inline double v8_sum(v8f a) {
-    double s = 0;
-    for (int k = 0; k < 8; ++k) s += (double)a[k];
-    return s;
+    typedef float v4f __attribute__((vector_size(16)));
+    typedef double v4d __attribute__((vector_size(32)));
+    const v4f lo = {a[0], a[1], a[2], a[3]}, hi = {a[4], a[5], a[6], a[7]};
+    const v4d s = __builtin_convertvector(lo, v4d) + __builtin_convertvector(hi, v4d);
+    return (s[0] + s[2]) + (s[1] + s[3]);
 }
 
 /* (dW/dq)/q of the Wendland kernels (q < 2 is masked by the caller). */
@@ -1159,12 +1163,14 @@ static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why) {
 
 /* The candidates of each particle, from the positions and cells of the last search (the
  * particles sorted by cell and, within each row of cells, by x): in each of the 3 (2D) or 9
- * (3D) rows of cells around its cell, the particles within x +- reach, reach = support + skin.
- * A pair within the support now was within reach then (no particle has moved more than half
- * the skin since), so the ranges hold every neighbour, like the Verlet list. Each range's
- * length is rounded up to a multiple of 8 (whole vectors) and ranges that then overlap are
- * merged, so that no pair is counted twice; the particles this adds lie beyond reach, and the
- * padding after the last particle lies 1e10 m away: the pair loop's range mask removes both. */
+ * (3D) rows of cells around its cell, the particles within the circle (sphere) of radius
+ * reach = support + skin: in a row at distance e from the particle, those within
+ * x +- sqrt(reach^2 - e^2). A pair within the support now was within reach then (no particle
+ * has moved more than half the skin since), so the ranges hold every neighbour, like the
+ * Verlet list. Each range's length is rounded up to a multiple of 8 (whole vectors) and ranges
+ * that then overlap are merged, so that no pair is counted twice; the particles this adds lie
+ * beyond reach, and the padding after the last particle lies 1e10 m away: the pair loop's
+ * range mask removes both. */
 static ry_status fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
     const ry_cell_list *cl = &sim->cells;
     const int dim = sim->dim, nrange = dim > 2 ? 9 : 3;
@@ -1180,27 +1186,38 @@ static ry_status fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
         w->nrange = nrange;
     }
     const double *xr = sim->ps.f[sim->f_xref];
-    const double reach = sim->nl_radius * (1.0 + sim->nl_skin);
+    const double reach = sim->nl_radius * (1.0 + sim->nl_skin), reach2 = reach * reach;
+    const double *yr = sim->ps.f[sim->f_xref + 1];
+    const double *zr = sim->ps.f[sim->f_xref + (dim > 2 ? 2 : 1)];
     const size_t *start = cl->start;
     const int nx = cl->ncell[0], ny = cl->ncell[1], nz = cl->ncell[2];
     uint32_t *rng = w->rng;
 #pragma omp parallel
     {
-        /* The bounds of the previous particle, per row slot: within a cell the particles come
-         * in order of x, so the bounds only move forward and a particle after the first of its
-         * cell finds them by stepping on from there (a binary search otherwise). */
+        /* The bounds of the previous particle of the same cell, per row slot: the particles
+         * of a cell are close in x, so a particle finds its bounds by stepping from there (a
+         * binary search for the first particle of a cell). */
         size_t prev_cell = SIZE_MAX, lb[9], ub[9];
-        double prev_x = 0;
+        int known[9] = {0};
 #pragma omp for schedule(static)
         for (size_t i = 0; i < n; ++i) {
             const size_t cell = cl->cell_of[i];
             const int kx = (int)(cell % (size_t)nx), ky = (int)(cell / (size_t)nx % (size_t)ny);
             const int kz = dim > 2 ? (int)(cell / ((size_t)nx * (size_t)ny)) : 0;
             const int xa = kx > 0 ? kx - 1 : 0, xb = kx + 1 < nx ? kx + 1 : nx - 1;
-            const double lo = xr[i] - reach, hi = xr[i] + reach;
-            const int sweep = cell == prev_cell && xr[i] >= prev_x;
+            if (cell != prev_cell)
+                for (int k = 0; k < 9; ++k) known[k] = 0;
             prev_cell = cell;
-            prev_x = xr[i];
+            /* Distances from the particle to the rows of cells above and below (and in front
+             * and behind): a row at distance e holds candidates within x +- sqrt(reach^2 - e^2)
+             * only. The margin covers the rounding of the binning. */
+            const double yi = yr[i], zi = dim > 2 ? zr[i] : 0.0, margin = 1e-9 * reach;
+            const double ylo = cl->lo[1] + ky * cl->cell[1], zlo = cl->lo[2] + kz * cl->cell[2];
+            const double eb = yi - ylo - margin, ea = ylo + cl->cell[1] - yi - margin;
+            const double fb = dim > 2 ? zi - zlo - margin : 0.0;
+            const double fa = dim > 2 ? zlo + cl->cell[2] - zi - margin : 0.0;
+            const double ey[3] = {eb > 0 ? eb : 0.0, 0.0, ea > 0 ? ea : 0.0};
+            const double ez[3] = {fb > 0 ? fb : 0.0, 0.0, fa > 0 ? fa : 0.0};
             uint32_t *rg = rng + i * 2 * (size_t)nrange;
             int nr = 0;
             for (int z = kz - 1; z <= kz + 1; ++z) {
@@ -1208,18 +1225,25 @@ static ry_status fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
                 if (z < 0 || z >= nz) continue;
                 for (int y = ky - 1; y <= ky + 1; ++y) {
                     if (y < 0 || y >= ny) continue;
+                    const double e2 =
+                        ey[y - ky + 1] * ey[y - ky + 1] + ez[z - kz + 1] * ez[z - kz + 1];
+                    if (e2 >= reach2) continue;
+                    const double half = sqrt(reach2 - e2);
+                    const double lo = xr[i] - half, hi = xr[i] + half;
                     const int slot = (z - kz + 1) * 3 + (y - ky + 1);
                     const size_t row = ((size_t)z * (size_t)ny + (size_t)y) * (size_t)nx;
-                    const size_t b0 = start[row + (size_t)xb + 1];
+                    const size_t ra = start[row + (size_t)xa], b0 = start[row + (size_t)xb + 1];
                     size_t a, b;
-                    if (sweep) {
+                    if (known[slot]) {
                         /* first with x >= lo, first with x > hi */
                         a = lb[slot];
+                        while (a > ra && xr[a - 1] >= lo) --a;
                         while (a < b0 && xr[a] < lo) ++a;
                         b = ub[slot] > a ? ub[slot] : a;
+                        while (b > a && xr[b - 1] > hi) --b;
                         while (b < b0 && xr[b] <= hi) ++b;
                     } else {
-                        size_t l = start[row + (size_t)xa], u = b0;
+                        size_t l = ra, u = b0;
                         while (l < u) {
                             const size_t m = l + (u - l) / 2;
                             if (xr[m] < lo)
@@ -1238,6 +1262,7 @@ static ry_status fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
                         }
                         b = l;
                     }
+                    known[slot] = 1;
                     lb[slot] = a;
                     ub[slot] = b;
                     if (b <= a) continue;
@@ -1263,6 +1288,17 @@ static ry_status fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
         }
     }
     w->rng_gen = sim->nl_generation;
+    if (getenv("RY_DBG_RNG")) {
+        size_t tot = 0, nf = 0;
+        for (size_t i = 0; i < n; ++i) {
+            if (sim->ps.kind[i]) continue;
+            ++nf;
+            for (int r = 0; r < nrange; ++r)
+                tot += rng[i * 2 * nrange + 2 * r + 1] - rng[i * 2 * nrange + 2 * r];
+        }
+        fprintf(stderr, "cand/fluid %.2f cell %g %g reach %g\n", (double)tot / nf, cl->cell[0],
+                cl->cell[1], reach);
+    }
     return RY_OK;
 }
 
