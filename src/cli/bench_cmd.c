@@ -68,14 +68,17 @@ static int cmp_double(const void *a, const void *b) {
 }
 
 static int bench_sph(int quick, int max_threads) {
+    /* Steps so that each run is at least 1e7 particle-steps (about a second at 1e7
+     * particle-steps/s): shorter runs measure start-up and scheduler noise. */
     struct {
         int dim;
         double dx;
+        long steps;
         const char *label;
-    } sizes[] = {{2, 0.00625, "2D dam break 40x80"},
-                 {2, 0.00145, "2D dam break 172x344"},
-                 {2, 0.0007, "2D dam break 357x714"},
-                 {3, 0.0068, "3D dam break 36x36x73"}};
+    } sizes[] = {{2, 0.00625, 2400, "2D dam break 40x80"},
+                 {2, 0.00145, 160, "2D dam break 172x344"},
+                 {2, 0.0007, 40, "2D dam break 357x714"},
+                 {3, 0.0068, 200, "3D dam break 36x36x73"}};
     int nsizes = quick ? 1 : 4;
     int reps = quick ? 1 : 3;
     char dir[] = "/tmp/ryushi_bench_XXXXXX";
@@ -91,9 +94,7 @@ static int bench_sph(int quick, int max_threads) {
     for (int s = 0; s < nsizes; ++s) {
         size_t np = 0;
         double bpp = 0;
-        /* Steps so that each run takes about a second or more at 1e7 particle-steps/s. */
-        long steps = quick ? 20 : 200;
-        if (!quick && sizes[s].dx < 0.002) steps = 40;
+        const long steps = quick ? 20 : sizes[s].steps;
         double base = 0;
         for (int t = 1; t <= max_threads; t *= 2) {
             omp_set_num_threads(t);
