@@ -204,6 +204,46 @@ static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *
     return RY_OK;
 }
 
+/* Interface of two fluids stacked in a box one wavelength wide (2D; Rayleigh-Taylor): the
+ * amplitude a of the mode a cos(2 pi (x - x_lo) / W) of the interface height, W = x_hi - x_lo
+ * the width of the fluid (its particles' x-range widened by half a spacing each side). The
+ * lower fluid (of materials 0 and 1, the one with the lower mean height) fills y < eta(x), so
+ * sum_lower V cos = int eta cos dx = a W / 2; subtracting the lower fluid's share of the same
+ * sum over all fluid makes the result insensitive to W and to the flat bottom and top. a > 0:
+ * the interface is higher at x_lo than at the middle of the box. */
+static ry_status probe_interface_amplitude(const ry_sim *sim, double *v, ry_error *err) {
+    RY_CHECK(err, sim->nmat >= 2 && sim->dim == 2, RY_ERR_INPUT,
+             "measurement 'interface_amplitude' needs dimension 2 and two materials");
+    const ry_particles *ps = &sim->ps;
+    double xlo = INFINITY, xhi = -INFINITY, ysum[2] = {0, 0};
+    size_t cnt[2] = {0, 0};
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] > 1) continue;
+        const double x = ps->f[RY_F_X][i];
+        xlo = fmin(xlo, x);
+        xhi = fmax(xhi, x);
+        ysum[ps->material[i]] += ps->f[RY_F_Y][i];
+        ++cnt[ps->material[i]];
+    }
+    if (!cnt[0] || !cnt[1]) {
+        *v = 0;
+        return RY_OK;
+    }
+    const int lower = ysum[1] / (double)cnt[1] < ysum[0] / (double)cnt[0];
+    xlo -= 0.5 * sim->dx;
+    const double w = xhi + 0.5 * sim->dx - xlo, k = 2.0 * 3.14159265358979323846 / w;
+    double cl = 0, ca = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] > 1) continue;
+        const double c = cos(k * (ps->f[RY_F_X][i] - xlo));
+        ca += c;
+        if (ps->material[i] == lower) cl += c;
+    }
+    const double share = (double)cnt[lower] / (double)(cnt[0] + cnt[1]);
+    *v = 2.0 * sim->dx * sim->dx / w * (cl - share * ca);
+    return RY_OK;
+}
+
 /* IISPH pressure-solve iterations: of the last step, and the mean over the run so far. */
 static ry_status probe_iisph_iters(const ry_sim *sim, double *v, ry_error *err) {
     double last, mean;
@@ -248,9 +288,15 @@ static const ry_probe p_oil_wall = {
     "oil_wall_contact",
     "fraction of the wetted wall whose nearest fluid particle is of the second material",
     probe_oil_wall_contact};
+static const ry_probe p_interface = {
+    "interface_amplitude",
+    "2D, two fluids in a box one wavelength wide: amplitude of the interface mode "
+    "cos(2 pi x / width) [m]",
+    probe_interface_amplitude};
 static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_filled,
                                              &p_oil_wall,
+                                             &p_interface,
                                              &p_iters,
                                              &p_iters_mean,
                                              &p_kin,
