@@ -165,10 +165,30 @@ static ry_status probe_filled_fraction(const ry_sim *sim, double *v, ry_error *e
     return RY_OK;
 }
 
+/* Whether wall particle i belongs to a port: within half the diagonal of an open boundary's
+ * cross-section plus the kernel support radius of the line through the zone's centre along its
+ * flow axis (the channel leading to the port and the collar around it). */
+static int near_port_axis(const ry_sim *sim, size_t i) {
+    for (int b = 0; b < sim->nopen; ++b) {
+        const ry_open_boundary *o = &sim->open[b];
+        double half2 = 0, r2 = 0;
+        for (int d = 0; d < sim->dim; ++d) {
+            if (d == o->axis) continue;
+            const double w = 0.5 * (o->hi[d] - o->lo[d]);
+            const double x = sim->ps.f[RY_F_X + d][i] - 0.5 * (o->lo[d] + o->hi[d]);
+            half2 += w * w;
+            r2 += x * x;
+        }
+        const double rmax = sqrt(half2) + sim->kernel.radius;
+        if (r2 <= rmax * rmax) return 1;
+    }
+    return 0;
+}
+
 /* Wall wetted by the injected fluid: among the wall particles with a fluid particle within the
  * kernel support (the wetted wall, e.g. the retina), the fraction whose nearest fluid particle
- * is of the second material (the injected fluid, e.g. silicone oil). Uses the current
- * neighbour list. */
+ * is of the second material (the injected fluid, e.g. silicone oil). Wall particles of the
+ * ports (near_port_axis) do not count. Uses the current neighbour list. */
 static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *err) {
     RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
              "measurement 'oil_wall_contact' needs two materials (the second is the injected one)");
@@ -180,7 +200,7 @@ static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *
     const double rad2 = sim->kernel.radius * sim->kernel.radius;
     size_t wet = 0, oil = 0;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_WALL) continue;
+        if (ps->kind[i] != RY_KIND_WALL || near_port_axis(sim, i)) continue;
         double best = rad2;
         int mat = -1;
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
@@ -286,7 +306,8 @@ static const ry_probe p_filled = {
     probe_filled_fraction};
 static const ry_probe p_oil_wall = {
     "oil_wall_contact",
-    "fraction of the wetted wall whose nearest fluid particle is of the second material",
+    "fraction of the wetted wall (without the ports' channels and collars) whose nearest fluid "
+    "particle is of the second material",
     probe_oil_wall_contact};
 static const ry_probe p_interface = {
     "interface_amplitude",

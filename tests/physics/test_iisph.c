@@ -186,13 +186,37 @@ static void test_rayleigh_taylor(void **state) {
     ry_table_free(&s);
 }
 
+/* Eye case (cases/eye_sphere.yaml), one step: oil_wall_contact counts the retinal wall only,
+ * not the wall of the ports (within half the port's cross-section diagonal plus the kernel
+ * support of a port axis). With oil only in the infusion channel no retinal wall touches oil:
+ * 0 (it was 0.049 when the channel walls and collars counted); with oil filling the cavity and
+ * saline in both channels every counted wall particle touches oil: 1 (it was 0.90). */
+static void test_eye_port_walls(void **state) {
+    (void)state;
+    for (int k = 0; k < 2; ++k) {
+        const char *sets[] = {"time.max_steps=1", "output.vtk=false",
+                              k ? "bodies[0].material=silicone_oil"
+                                : "bodies[1].material=silicone_oil"};
+        ry_table s;
+        run_case("cases/eye_sphere.yaml", k ? "eye_cavity_oil" : "eye_channel_oil", 3, sets, &s,
+                 NULL, NULL);
+        const int c = ry_table_col(&s, "oil_wall_contact");
+        assert_true(c >= 0 && s.nrows >= 2);
+        const double v = ry_table_at(&s, s.nrows - 1, c);
+        printf("eye, oil in the %s: oil_wall_contact %.6f (expected %d)\n",
+               k ? "cavity" : "infusion channel", v, k);
+        assert_true(fabs(v - k) < 1e-12);
+        ry_table_free(&s);
+    }
+}
+
 int main(void) {
     const char *src = getenv("RY_SOURCE_DIR");
     snprintf(root, sizeof root, "%s", src ? src : ".");
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hydrostatic),     cmocka_unit_test(test_martin_moyce),
         cmocka_unit_test(test_stacked),         cmocka_unit_test(test_square_drop),
-        cmocka_unit_test(test_rayleigh_taylor),
+        cmocka_unit_test(test_rayleigh_taylor), cmocka_unit_test(test_eye_port_walls),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
