@@ -91,12 +91,14 @@ ry_growth_fit ry_fit_growth(const ry_table *series, const char *name, double t0,
                             double n_lo, double n_hi);
 
 /* Linear Rayleigh-Taylor growth rate [1/s] of a heavy layer (rho1, depth h1) over a light one
- * (rho2, depth h2) between rigid plates, wavenumber k, gravity g: from linear potential flow,
- * N^2 = g k (rho1 - rho2) / (rho1 coth(k h1) + rho2 coth(k h2)) (deep layers: A g k,
- * Chandrasekhar 1961, Hydrodynamic and Hydromagnetic Stability, ch. X), with the viscous
- * correction of the inviscid-flow approximation for equal kinematic viscosity nu (Mikaelian
- * 1993, Phys. Rev. E 47: 375), n = sqrt(N^2 + nu^2 k^4) - nu k^2. */
+ * (rho2, depth h2, on a rigid floor), wavenumber k, gravity g, interfacial tension sigma, from
+ * linear potential flow: n^2 (rho1 R + rho2 coth(k h2)) = (rho1 - rho2) g k - sigma k^3, with
+ * R = coth(k h1) under a rigid lid, R = (n^2 tanh(k h1) + g k) / (n^2 + g k tanh(k h1)) under a
+ * free surface (free_top); deep layers: n^2 = A g k - sigma k^3 / (rho1 + rho2) (Chandrasekhar
+ * 1961, Hydrodynamic and Hydromagnetic Stability, ch. X). Viscous correction for equal
+ * kinematic viscosity nu, of the inviscid-flow approximation (Mikaelian 1993, Phys. Rev. E 47:
+ * 375): n = sqrt(N^2 + nu^2 k^4) - nu k^2. 0 when the layer is stable (N^2 <= 0). */
 double ry_rt_growth_rate(double rho1, double rho2, double h1, double h2, double g, double k,
-                         double nu);
+                         double nu, double sigma, int free_top);
 
 #endif

@@ -360,7 +360,13 @@ ry_growth_fit ry_fit_growth(const ry_table *series, const char *name, double t0,
 }
 
 double ry_rt_growth_rate(double rho1, double rho2, double h1, double h2, double g, double k,
-                         double nu) {
-    const double n2 = g * k * (rho1 - rho2) / (rho1 / tanh(k * h1) + rho2 / tanh(k * h2));
+                         double nu, double sigma, int free_top) {
+    const double drive = (rho1 - rho2) * g * k - sigma * k * k * k, t1 = tanh(k * h1);
+    const double lower = rho2 / tanh(k * h2);
+    double n2 = drive / (rho1 / t1 + lower); /* rigid lid */
+    /* Free surface: R decreases from coth(k h1) as n^2 grows; the fixed point converges. */
+    for (int it = 0; free_top && n2 > 0 && it < 200; ++it)
+        n2 = drive / (rho1 * (n2 * t1 + g * k) / (n2 + g * k * t1) + lower);
+    if (!(n2 > 0)) return 0.0;
     return sqrt(n2 + nu * nu * k * k * k * k) - nu * k * k;
 }
