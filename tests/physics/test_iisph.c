@@ -152,7 +152,7 @@ static void test_square_drop(void **state) {
  * here over the columns, within 1e-9. Theory (ry_rt_growth_rate): sqrt(A g k) for deep layers
  * without tension, and 12.16 1/s for the case (the free-surface dispersion relation solved
  * independently). The growth rate of the mode, a(t) = A e^(nt) + B e^(-nt) fitted up to
- * a = 0.1 lambda, within 15 % of theory (measured -11.8 %; -5.8 % at 100 per wavelength:
+ * a = 0.1 lambda, within 15 % of theory (measured -11.8 %; -5.7 % at 100 per wavelength:
  * docs/iisph.md); the fit follows the record within 5 % RMS, over at least 0.15 s. */
 static void test_rayleigh_taylor(void **state) {
     (void)state;
