@@ -20,6 +20,11 @@ typedef struct ry_body_style {
 /* Filled rectangle (2D) or box (3D) [lo, hi]. */
 ry_status ry_fill_box(ry_particles *ps, const double *lo, const double *hi, double dx,
                       const ry_body_style *st, size_t *added, ry_error *err);
+/* The same box with a wavy top face: the largest coordinate (y in 2D, z in 3D) ends at
+ * hi + amplitude cos(2 pi (x - lo_x) / wavelength) instead of hi (a perturbed interface). */
+ry_status ry_fill_box_wave(ry_particles *ps, const double *lo, const double *hi, double amplitude,
+                           double wavelength, double dx, const ry_body_style *st, size_t *added,
+                           ry_error *err);
 /* Filled circle (2D) or sphere (3D). */
 ry_status ry_fill_sphere(ry_particles *ps, const double *centre, double radius, double dx,
                          const ry_body_style *st, size_t *added, ry_error *err);

@@ -77,4 +77,28 @@ typedef struct ry_drop_periods {
 } ry_drop_periods;
 ry_drop_periods ry_drop_periods_measure(const ry_table *series, const char *name);
 
+/* Exponential growth of a mode (Rayleigh-Taylor): a(t) = A e^(n t) + B e^(-n t) fitted to a
+ * column by least squares on the relative residual, (fit - a) / a, over the rows from t0 up to
+ * the last one before abs(a) first exceeds amax; for each n the best A and B are linear, n is
+ * searched by golden section in [n_lo, n_hi]. rows < 4: no fit (n = NAN). */
+typedef struct ry_growth_fit {
+    double n, A, B; /* [1/s], column units */
+    double rms;     /* RMS relative residual */
+    double t_last;  /* last fitted time [s] */
+    int rows;
+} ry_growth_fit;
+ry_growth_fit ry_fit_growth(const ry_table *series, const char *name, double t0, double amax,
+                            double n_lo, double n_hi);
+
+/* Linear Rayleigh-Taylor growth rate [1/s] of a heavy layer (rho1, depth h1) over a light one
+ * (rho2, depth h2, on a rigid floor), wavenumber k, gravity g, interfacial tension sigma, from
+ * linear potential flow: n^2 (rho1 R + rho2 coth(k h2)) = (rho1 - rho2) g k - sigma k^3, with
+ * R = coth(k h1) under a rigid lid, R = (n^2 tanh(k h1) + g k) / (n^2 + g k tanh(k h1)) under a
+ * free surface (free_top); deep layers: n^2 = A g k - sigma k^3 / (rho1 + rho2) (Chandrasekhar
+ * 1961, Hydrodynamic and Hydromagnetic Stability, ch. X). Viscous correction for equal
+ * kinematic viscosity nu, of the inviscid-flow approximation (Mikaelian 1993, Phys. Rev. E 47:
+ * 375): n = sqrt(N^2 + nu^2 k^4) - nu k^2. 0 when the layer is stable (N^2 <= 0). */
+double ry_rt_growth_rate(double rho1, double rho2, double h1, double h2, double g, double k,
+                         double nu, double sigma, int free_top);
+
 #endif

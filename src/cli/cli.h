@@ -23,6 +23,8 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
 int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failures);
 /* IISPH and two-phase validation (validate_iisph.c). */
 int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *failures);
+/* Only its Rayleigh-Taylor part (ryushi validate rt). */
+int ry_cli_validate_rt(const char *root, const char *out, int quick, int *failures);
 /* The eye case in segments with slice pictures (validate_iisph.c). */
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures);
 

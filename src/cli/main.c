@@ -20,39 +20,40 @@ static void on_signal(int sig) {
 }
 
 static void usage(FILE *fp) {
-    fprintf(fp,
-            "ryushi %s — meshfree particle methods (SPH, MPS) for fluids and soft solids\n"
-            "\n"
-            "usage:\n"
-            "  ryushi run CASE [-o DIR] [--threads N] [--set KEY=VALUE]... [--restart DIR]\n"
-            "        run a case file; output (VTK .vtp/.pvd, series.csv, case_resolved.yaml,\n"
-            "        checkpoints/) goes to DIR (default: the case's output.folder);\n"
-            "        --restart continues from the newest sound checkpoint in DIR\n"
-            "  ryushi checkpoint FILE\n"
-            "        check a checkpoint file (checksum) and list its records\n"
-            "  ryushi info CASE [--set KEY=VALUE]...\n"
-            "        set the case up and report particles, memory and methods without running\n"
-            "  ryushi bench neighbors [--quick] [--threads N]\n"
-            "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
-            "  ryushi validate [dam_break|cavity|channel|cantilever|plate|buckling|iisph|eye|all] "
-            "[--quick]\n"
-            "        [-o DIR] [--threads N]\n"
-            "        run the validation cases against their references, with plots\n"
-            "        (default output folder out/validate)\n"
-            "  ryushi bench [sph] [--quick] [--threads N]\n"
-            "        WCSPH dam-break throughput (particle-steps/s) at 4k to 250k particles\n"
-            "  ryushi plot kernels -o FILE.png\n"
-            "        the Lucy and Gaussian kernels and their derivatives (seed 000)\n"
-            "  ryushi schemes | probes\n"
-            "        list the schemes and measured quantities a case can name\n"
-            "  ryushi --help | --version\n"
-            "\n"
-            "KEY is a dotted path into the case file, e.g. --set time.end=0.3 or\n"
-            "--set bodies[0].hi=[0.25,0.5]. Exit codes: 0 success, 1 internal error,\n"
-            "2 bad input, 3 i/o error, 4 unstable run, 130 interrupted.\n"
-            "RY_MAX_PARTICLES=N in the environment limits the particles of a case (an error\n"
-            "beyond it, exit code 2).\n",
-            RY_VERSION);
+    fprintf(
+        fp,
+        "ryushi %s — meshfree particle methods (SPH, MPS) for fluids and soft solids\n"
+        "\n"
+        "usage:\n"
+        "  ryushi run CASE [-o DIR] [--threads N] [--set KEY=VALUE]... [--restart DIR]\n"
+        "        run a case file; output (VTK .vtp/.pvd, series.csv, case_resolved.yaml,\n"
+        "        checkpoints/) goes to DIR (default: the case's output.folder);\n"
+        "        --restart continues from the newest sound checkpoint in DIR\n"
+        "  ryushi checkpoint FILE\n"
+        "        check a checkpoint file (checksum) and list its records\n"
+        "  ryushi info CASE [--set KEY=VALUE]...\n"
+        "        set the case up and report particles, memory and methods without running\n"
+        "  ryushi bench neighbors [--quick] [--threads N]\n"
+        "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
+        "  ryushi validate [dam_break|cavity|channel|cantilever|plate|buckling|iisph|rt|eye|all] "
+        "[--quick]\n"
+        "        [-o DIR] [--threads N]\n"
+        "        run the validation cases against their references, with plots\n"
+        "        (default output folder out/validate)\n"
+        "  ryushi bench [sph] [--quick] [--threads N]\n"
+        "        WCSPH dam-break throughput (particle-steps/s) at 4k to 250k particles\n"
+        "  ryushi plot kernels -o FILE.png\n"
+        "        the Lucy and Gaussian kernels and their derivatives (seed 000)\n"
+        "  ryushi schemes | probes\n"
+        "        list the schemes and measured quantities a case can name\n"
+        "  ryushi --help | --version\n"
+        "\n"
+        "KEY is a dotted path into the case file, e.g. --set time.end=0.3 or\n"
+        "--set bodies[0].hi=[0.25,0.5]. Exit codes: 0 success, 1 internal error,\n"
+        "2 bad input, 3 i/o error, 4 unstable run, 130 interrupted.\n"
+        "RY_MAX_PARTICLES=N in the environment limits the particles of a case (an error\n"
+        "beyond it, exit code 2).\n",
+        RY_VERSION);
 }
 
 static int fail(const ry_error *err) {

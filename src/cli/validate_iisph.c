@@ -1,6 +1,7 @@
 /* ryushi validate iisph: implicit incompressible SPH (scheme iisph) and its two-phase form.
  * Hydrostatic tank; Martin & Moyce dam break beside WCSPH (front accuracy and cost per
- * simulated second); two fluids at rest (spurious speeds); square drop (Laplace pressure).
+ * simulated second); two fluids at rest (spurious speeds); square drop (Laplace pressure);
+ * Rayleigh-Taylor growth rate against linear theory.
  * Results in docs/validation.md and docs/iisph.md. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -220,6 +221,89 @@ static void square_drop(const char *root, const char *out, int *failures) {
     }
 }
 
+/* Rayleigh-Taylor instability: the growth rate of the interface mode against linear theory
+ * at 50 and 100 particles per wavelength (quick: 50), with a0 = one spacing. */
+static void rayleigh_taylor(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    const double pi = 3.14159265358979323846, lambda = 0.1, k = 2 * pi / lambda, t_end = 0.3;
+    const double n_th = ry_rt_growth_rate(1800.0, 1000.0, 0.016, 0.05, 9.81, k, 1e-6, 0.124, 1);
+    printf("Rayleigh-Taylor (cases/rayleigh_taylor.yaml, Atwood 0.286, lambda = 0.1 m, sigma = "
+           "0.124 N/m): linear theory n = %.3f 1/s (deep, no tension: %.3f), %d thread(s)\n",
+           n_th, sqrt(0.8 / 2.8 * 9.81 * k), omp_get_max_threads());
+    printf("  %-8s %9s %9s %9s %8s %7s %6s %7s %9s %7s\n", "per lambda", "particles", "a0 [m]",
+           "n [1/s]", "error", "fit to", "rms", "steps", "wall [s]", "iters");
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 1, 900, 620, &err) != RY_OK) {
+        fail(failures, &err);
+        return;
+    }
+    ry_plot_panel(p, 0, "Rayleigh-Taylor, Atwood 0.286: growth of the interface mode", "t [s]",
+                  "ln(a / a0)", &err);
+    const int per[2] = {50, 100}, nres = quick ? 1 : 2;
+    double n_prev = NAN;
+    for (int r = 0; r < nres; ++r) {
+        char sp[64], amp[64], sub[64], te[64];
+        const double dx = lambda / per[r];
+        snprintf(sp, sizeof sp, "spacing=%.10g", dx);
+        snprintf(amp, sizeof amp, "bodies[0].top_amplitude=%.10g", dx);
+        snprintf(te, sizeof te, "time.end=%g", t_end);
+        snprintf(sub, sizeof sub, "rayleigh_taylor_%d", per[r]);
+        const char *sets[] = {sp, amp, te, "output.vtk=false"};
+        irun run;
+        if (run_case(root, out, "cases/rayleigh_taylor.yaml", sub, 4, sets, &run, &err) != RY_OK) {
+            fail(failures, &err);
+            continue;
+        }
+        const ry_growth_fit f =
+            ry_fit_growth(&run.s, "interface_amplitude", 0.0, 0.1 * lambda, 0.1 * n_th, 3 * n_th);
+        const int ca = ry_table_col(&run.s, "interface_amplitude");
+        const double a0 = ca >= 0 ? run.s.data[ca] : NAN;
+        printf("  %-10d %9zu %9.5f %9.3f %+7.1f%% %6.3fs %6.3f %7ld %9.1f %7.1f\n", per[r],
+               run.sim.ps.n, a0, f.n, 100 * (f.n / n_th - 1), f.t_last, f.rms, run.stats.steps,
+               run.stats.wall_s, ry_column_max(&run.s, "iisph_iterations_mean"));
+        double *t = ca >= 0 ? ry_table_column(&run.s, ry_table_col(&run.s, "t")) : NULL;
+        double *a = ca >= 0 ? ry_table_column(&run.s, ca) : NULL;
+        if (t && a) {
+            for (size_t i = 0; i < run.s.nrows; ++i) a[i] = log(fabs(a[i]) / fabs(a0));
+            char label[64];
+            snprintf(label, sizeof label, "IISPH, %d per wavelength: n = %.2f 1/s", per[r], f.n);
+            ry_plot_style st = ry_plot_style_line();
+            st.color = r;
+            ry_plot_series(p, 0, label, run.s.nrows, t, a, st, &err);
+        }
+        free(t);
+        free(a);
+        char what[128];
+        snprintf(what, sizeof what, "Rayleigh-Taylor %d per wavelength: growth rate within %d %%",
+                 per[r], r ? 10 : 15);
+        verdict(failures, what, fabs(f.n / n_th - 1) <= (r ? 0.10 : 0.15));
+        if (r)
+            verdict(failures, "Rayleigh-Taylor: closer to theory at 100 than at 50 per wavelength",
+                    fabs(f.n / n_th - 1) < fabs(n_prev / n_th - 1));
+        n_prev = f.n;
+        irun_free(&run);
+    }
+    enum { NT = 61 };
+    double tt[NT], th[NT];
+    for (int i = 0; i < NT; ++i) {
+        tt[i] = t_end * i / (NT - 1);
+        th[i] = log(cosh(n_th * tt[i]));
+    }
+    ry_plot_style st = ry_plot_style_line();
+    st.dash = RY_PLOT_DASH_DASHED;
+    st.color = 7;
+    ry_plot_series(p, 0, "linear theory, a0 cosh(n t)", NT, tt, th, st, &err);
+    ry_plot_xrange(p, 0, 0, t_end, &err);
+    ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
+    char png[4096];
+    snprintf(png, sizeof png, "%s/iisph_rayleigh_taylor.png", out);
+    if (ry_plot_write_png(p, png, &err) != RY_OK)
+        fail(failures, &err);
+    else
+        printf("  plot: %s\n", png);
+    ry_plot_free(p);
+}
+
 /* Slice y = 0 of the eye (|y| < dx): walls, saline and oil as markers, x and z in mm. */
 static void eye_slice(ry_plot *p, int panel, const ry_sim *sim, double t) {
     ry_error err;
@@ -321,6 +405,11 @@ int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *fai
     dam_break(root, out, quick, failures);
     stacked(root, out, quick, failures);
     square_drop(root, out, failures);
-    printf("Rayleigh-Taylor growth rate: not implemented yet (docs/iisph.md)\n");
+    rayleigh_taylor(root, out, quick, failures);
+    return 0;
+}
+
+int ry_cli_validate_rt(const char *root, const char *out, int quick, int *failures) {
+    rayleigh_taylor(root, out, quick, failures);
     return 0;
 }

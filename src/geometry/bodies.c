@@ -104,7 +104,16 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
         double lo[3], hi[3];
         RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "lo"), NULL, dim, lo, err));
         RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "hi"), NULL, dim, hi, err));
-        s = ry_fill_box(ps, lo, hi, dx, &st, &added, err);
+        const int wave = ry_case_has(c, key(k, sizeof k, i, "top_amplitude"));
+        if (wave || ry_case_has(c, key(k, sizeof k, i, "top_wavelength"))) {
+            double amp, len, width = hi[0] - lo[0], zero1 = 0;
+            RY_TRY(ry_case_double(c, key(k, sizeof k, i, "top_amplitude"), &zero1, -1e300, 1e300,
+                                  &amp, err));
+            RY_TRY(ry_case_positive(c, key(k, sizeof k, i, "top_wavelength"),
+                                    width > 0 ? &width : NULL, &len, err));
+            s = ry_fill_box_wave(ps, lo, hi, amp, len, dx, &st, &added, err);
+        } else
+            s = ry_fill_box(ps, lo, hi, dx, &st, &added, err);
         break;
     }
     case BODY_SPHERE:

@@ -60,6 +60,33 @@ ry_status ry_fill_box(ry_particles *ps, const double *lo, const double *hi, doub
     return fill_lattice(ps, lo, n, dx, NULL, NULL, st, added, err);
 }
 
+typedef struct wave_ctx {
+    int up;
+    double x0, top, amp, k;
+} wave_ctx;
+
+static int below_wave(const double *p, const void *ctx) {
+    const wave_ctx *w = ctx;
+    return p[w->up] <= w->top + w->amp * cos(w->k * (p[0] - w->x0));
+}
+
+ry_status ry_fill_box_wave(ry_particles *ps, const double *lo, const double *hi, double amplitude,
+                           double wavelength, double dx, const ry_body_style *st, size_t *added,
+                           ry_error *err) {
+    RY_CHECK(err, wavelength > 0, RY_ERR_INPUT, "box: top_wavelength must be > 0");
+    const int up = ps->dim - 1;
+    long n[3] = {1, 1, 1};
+    for (int d = 0; d < ps->dim; ++d) {
+        RY_CHECK(err, hi[d] > lo[d], RY_ERR_INPUT, "box: hi must exceed lo in every direction");
+        n[d] = lattice_count(lo[d], d == up ? hi[d] + fabs(amplitude) : hi[d], dx);
+    }
+    RY_CHECK(err, fabs(amplitude) < hi[up] - lo[up], RY_ERR_INPUT,
+             "box: top_amplitude must be smaller than the box height");
+    const double pi = 3.14159265358979323846;
+    wave_ctx w = {.up = up, .x0 = lo[0], .top = hi[up], .amp = amplitude, .k = 2 * pi / wavelength};
+    return fill_lattice(ps, lo, n, dx, below_wave, &w, st, added, err);
+}
+
 typedef struct sphere_ctx {
     int dim;
     double c[3], r2;

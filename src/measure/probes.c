@@ -165,10 +165,30 @@ static ry_status probe_filled_fraction(const ry_sim *sim, double *v, ry_error *e
     return RY_OK;
 }
 
+/* Whether wall particle i belongs to a port: within half the diagonal of an open boundary's
+ * cross-section plus the kernel support radius of the line through the zone's centre along its
+ * flow axis (the channel leading to the port and the collar around it). */
+static int near_port_axis(const ry_sim *sim, size_t i) {
+    for (int b = 0; b < sim->nopen; ++b) {
+        const ry_open_boundary *o = &sim->open[b];
+        double half2 = 0, r2 = 0;
+        for (int d = 0; d < sim->dim; ++d) {
+            if (d == o->axis) continue;
+            const double w = 0.5 * (o->hi[d] - o->lo[d]);
+            const double x = sim->ps.f[RY_F_X + d][i] - 0.5 * (o->lo[d] + o->hi[d]);
+            half2 += w * w;
+            r2 += x * x;
+        }
+        const double rmax = sqrt(half2) + sim->kernel.radius;
+        if (r2 <= rmax * rmax) return 1;
+    }
+    return 0;
+}
+
 /* Wall wetted by the injected fluid: among the wall particles with a fluid particle within the
  * kernel support (the wetted wall, e.g. the retina), the fraction whose nearest fluid particle
- * is of the second material (the injected fluid, e.g. silicone oil). Uses the current
- * neighbour list. */
+ * is of the second material (the injected fluid, e.g. silicone oil). Wall particles of the
+ * ports (near_port_axis) do not count. Uses the current neighbour list. */
 static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *err) {
     RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
              "measurement 'oil_wall_contact' needs two materials (the second is the injected one)");
@@ -180,7 +200,7 @@ static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *
     const double rad2 = sim->kernel.radius * sim->kernel.radius;
     size_t wet = 0, oil = 0;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_WALL) continue;
+        if (ps->kind[i] != RY_KIND_WALL || near_port_axis(sim, i)) continue;
         double best = rad2;
         int mat = -1;
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
@@ -201,6 +221,46 @@ static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *
         oil += mat == 1;
     }
     *v = wet ? (double)oil / (double)wet : 0.0;
+    return RY_OK;
+}
+
+/* Interface of two fluids stacked in a box one wavelength wide (2D; Rayleigh-Taylor): the
+ * amplitude a of the mode a cos(2 pi (x - x_lo) / W) of the interface height, W = x_hi - x_lo
+ * the width of the fluid (its particles' x-range widened by half a spacing each side). The
+ * lower fluid (of materials 0 and 1, the one with the lower mean height) fills y < eta(x), so
+ * sum_lower V cos = int eta cos dx = a W / 2; subtracting the lower fluid's share of the same
+ * sum over all fluid makes the result insensitive to W and to the flat bottom and top. a > 0:
+ * the interface is higher at x_lo than at the middle of the box. */
+static ry_status probe_interface_amplitude(const ry_sim *sim, double *v, ry_error *err) {
+    RY_CHECK(err, sim->nmat >= 2 && sim->dim == 2, RY_ERR_INPUT,
+             "measurement 'interface_amplitude' needs dimension 2 and two materials");
+    const ry_particles *ps = &sim->ps;
+    double xlo = INFINITY, xhi = -INFINITY, ysum[2] = {0, 0};
+    size_t cnt[2] = {0, 0};
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] > 1) continue;
+        const double x = ps->f[RY_F_X][i];
+        xlo = fmin(xlo, x);
+        xhi = fmax(xhi, x);
+        ysum[ps->material[i]] += ps->f[RY_F_Y][i];
+        ++cnt[ps->material[i]];
+    }
+    if (!cnt[0] || !cnt[1]) {
+        *v = 0;
+        return RY_OK;
+    }
+    const int lower = ysum[1] / (double)cnt[1] < ysum[0] / (double)cnt[0];
+    xlo -= 0.5 * sim->dx;
+    const double w = xhi + 0.5 * sim->dx - xlo, k = 2.0 * 3.14159265358979323846 / w;
+    double cl = 0, ca = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] > 1) continue;
+        const double c = cos(k * (ps->f[RY_F_X][i] - xlo));
+        ca += c;
+        if (ps->material[i] == lower) cl += c;
+    }
+    const double share = (double)cnt[lower] / (double)(cnt[0] + cnt[1]);
+    *v = 2.0 * sim->dx * sim->dx / w * (cl - share * ca);
     return RY_OK;
 }
 
@@ -246,11 +306,18 @@ static const ry_probe p_filled = {
     probe_filled_fraction};
 static const ry_probe p_oil_wall = {
     "oil_wall_contact",
-    "fraction of the wetted wall whose nearest fluid particle is of the second material",
+    "fraction of the wetted wall (without the ports' channels and collars) whose nearest fluid "
+    "particle is of the second material",
     probe_oil_wall_contact};
+static const ry_probe p_interface = {
+    "interface_amplitude",
+    "2D, two fluids in a box one wavelength wide: amplitude of the interface mode "
+    "cos(2 pi x / width) [m]",
+    probe_interface_amplitude};
 static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_filled,
                                              &p_oil_wall,
+                                             &p_interface,
                                              &p_iters,
                                              &p_iters_mean,
                                              &p_kin,

@@ -290,3 +290,83 @@ double ry_band_max_speed(const ry_sim *sim, int axis, double lo, double hi) {
     }
     return m;
 }
+
+/* Residual of the best A e^(n t) + B e^(-n t) for a fixed n (relative weights 1 / a). */
+static double growth_residual(const double *t, const double *a, int m, double n, double *A,
+                              double *B) {
+    double s11 = 0, s12 = 0, s22 = 0, r1 = 0, r2 = 0;
+    for (int i = 0; i < m; ++i) {
+        const double w = 1.0 / (a[i] * a[i]), e1 = exp(n * t[i]), e2 = exp(-n * t[i]);
+        s11 += w * e1 * e1;
+        s12 += w * e1 * e2;
+        s22 += w * e2 * e2;
+        r1 += w * e1 * a[i];
+        r2 += w * e2 * a[i];
+    }
+    const double det = s11 * s22 - s12 * s12;
+    *A = det != 0 ? (r1 * s22 - r2 * s12) / det : 0;
+    *B = det != 0 ? (s11 * r2 - s12 * r1) / det : 0;
+    double res = 0;
+    for (int i = 0; i < m; ++i) {
+        const double f = *A * exp(n * t[i]) + *B * exp(-n * t[i]);
+        res += (f - a[i]) * (f - a[i]) / (a[i] * a[i]);
+    }
+    return res;
+}
+
+ry_growth_fit ry_fit_growth(const ry_table *series, const char *name, double t0, double amax,
+                            double n_lo, double n_hi) {
+    ry_growth_fit g = {NAN, NAN, NAN, NAN, NAN, 0};
+    const int c = ry_table_col(series, name), ct = ry_table_col(series, "t");
+    if (c < 0 || ct < 0 || series->nrows < 4 || !(n_hi > n_lo)) return g;
+    double *t = malloc(series->nrows * sizeof *t), *a = malloc(series->nrows * sizeof *a);
+    int m = 0;
+    for (size_t r = 0; t && a && r < series->nrows; ++r) {
+        const double tr = series->data[r * series->ncols + ct];
+        const double ar = fabs(series->data[r * series->ncols + c]);
+        if (ar > amax) break;
+        if (tr < t0 || !(ar > 0)) continue;
+        t[m] = tr;
+        a[m++] = ar;
+    }
+    if (m >= 4) {
+        const double phi = 0.5 * (sqrt(5.0) - 1.0);
+        double lo = n_lo, hi = n_hi, A, B;
+        double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
+        double f1 = growth_residual(t, a, m, x1, &A, &B), f2 = growth_residual(t, a, m, x2, &A, &B);
+        for (int it = 0; it < 100 && hi - lo > 1e-9 * n_hi; ++it) {
+            if (f1 < f2) {
+                hi = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = hi - phi * (hi - lo);
+                f1 = growth_residual(t, a, m, x1, &A, &B);
+            } else {
+                lo = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = lo + phi * (hi - lo);
+                f2 = growth_residual(t, a, m, x2, &A, &B);
+            }
+        }
+        g.n = 0.5 * (lo + hi);
+        g.rms = sqrt(growth_residual(t, a, m, g.n, &g.A, &g.B) / m);
+        g.t_last = t[m - 1];
+        g.rows = m;
+    }
+    free(t);
+    free(a);
+    return g;
+}
+
+double ry_rt_growth_rate(double rho1, double rho2, double h1, double h2, double g, double k,
+                         double nu, double sigma, int free_top) {
+    const double drive = (rho1 - rho2) * g * k - sigma * k * k * k, t1 = tanh(k * h1);
+    const double lower = rho2 / tanh(k * h2);
+    double n2 = drive / (rho1 / t1 + lower); /* rigid lid */
+    /* Free surface: R decreases from coth(k h1) as n^2 grows; the fixed point converges. */
+    for (int it = 0; free_top && n2 > 0 && it < 200; ++it)
+        n2 = drive / (rho1 * (n2 * t1 + g * k) / (n2 + g * k * t1) + lower);
+    if (!(n2 > 0)) return 0.0;
+    return sqrt(n2 + nu * nu * k * k * k * k) - nu * k * k;
+}

@@ -30,6 +30,7 @@ case_ particles_outside_domain 2 ":7: key 'domain': particle 5 of body at (0.055
 case_ overlapping_bodies 2 ":6: body 'bodies[1]' overlaps body 'bodies[0]': its particle at (0.045, 0.035) lies within half a spacing of one of that body's particles"
 case_ empty_body 2 ":4: body 'bodies[0]': holds no particle at spacing 0.01 (too small or inverted)"
 case_ box_inverted 2 ":4: body 'bodies[0]': box: hi must exceed lo in every direction"
+case_ box_wave_too_high 2 ":4: body 'bodies[0]': box: top_amplitude must be smaller than the box height"
 case_ missing_scheme 2 ": key 'scheme.name': required key is missing"
 case_ no_bodies 2 ": key 'bodies': at least one body is required"
 case_ syntax_error 2 ":4: syntax error: mismatched flow mapping end"
