@@ -60,6 +60,10 @@ typedef struct ry_nlist {
  * memory of cl between calls; zero-initialise cl before the first call. O(n) counting sort. */
 ry_status ry_cells_build(ry_cell_list *cl, const ry_box *box, double radius, size_t n,
                          const double *const x[3], ry_error *err);
+/* After the particles were reordered by cl->order (ry_particles_permute): the cell list of
+ * the reordered particles, the same as a new ry_cells_build from their positions (particles
+ * of each cell consecutive, in order), without binning them again. */
+void ry_cells_permuted(ry_cell_list *cl);
 void ry_cells_free(ry_cell_list *cl);
 /* Orders the particles of each cell by their x coordinate (ties by index) in cl->order, so
  * that after a reordering along cl->order every row of cells (consecutive cells along x) holds

@@ -363,7 +363,7 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
         if (sim->sort_always) ry_cells_sort_x(&sim->cells, x[0]);
         RY_TRY(ry_particles_permute(ps, sim->cells.order, err));
         ry_particles_coords(ps, x);
-        RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
+        ry_cells_permuted(&sim->cells);
     }
     sim->searches++;
     sim->nl_generation++;

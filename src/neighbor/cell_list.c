@@ -254,6 +254,18 @@ void ry_cells_sort_x(ry_cell_list *cl, const double *x) {
     }
 }
 
+void ry_cells_permuted(ry_cell_list *cl) {
+    uint32_t *order = cl->order, *cell_of = cl->cell_of;
+    const size_t *start = cl->start;
+    const long long nc = (long long)cl->ncells;
+#pragma omp parallel for schedule(static)
+    for (long long c = 0; c < nc; ++c)
+        for (size_t q = start[c]; q < start[c + 1]; ++q) {
+            order[q] = (uint32_t)q;
+            cell_of[q] = (uint32_t)c;
+        }
+}
+
 void ry_cells_free(ry_cell_list *cl) {
     if (!cl) return;
     free(cl->start);

@@ -402,6 +402,38 @@ static void test_reuse(void **state) {
     ry_nlist_free(NULL);
 }
 
+/* After the points are reordered by the cell order (and sorted by x within cells), the cell
+ * list derived without binning equals a new build from the reordered points. */
+static void test_permuted(void **state) {
+    (void)state;
+    rng_state = 11;
+    for (int dim = 2; dim <= 3; ++dim) {
+        ry_box box = make_box(dim, 0.0, 1.0, 0, 0, 0);
+        ry_cell_list cl = {0}, fresh = {0};
+        ry_error err = {0};
+        pset s, t;
+        pset_init(&s, 3000);
+        pset_init(&t, 3000);
+        fill_uniform(&s, dim, 0.0, 1.0);
+        assert_int_equal(ry_cells_build(&cl, &box, 0.07, s.n, coords(&s), &err), RY_OK);
+        ry_cells_sort_x(&cl, s.c[0]);
+        for (size_t i = 0; i < s.n; ++i)
+            for (int d = 0; d < 3; ++d) t.c[d][i] = s.c[d][cl.order[i]];
+        ry_cells_permuted(&cl);
+        assert_int_equal(ry_cells_build(&fresh, &box, 0.07, t.n, coords(&t), &err), RY_OK);
+        assert_int_equal(cl.ncells, fresh.ncells);
+        assert_memory_equal(cl.start, fresh.start, (cl.ncells + 1) * sizeof(size_t));
+        assert_memory_equal(cl.order, fresh.order, t.n * sizeof(uint32_t));
+        assert_memory_equal(cl.cell_of, fresh.cell_of, t.n * sizeof(uint32_t));
+        for (size_t i = 1; i < t.n; ++i) /* x ascending within each cell */
+            if (cl.cell_of[i] == cl.cell_of[i - 1]) assert_true(t.c[0][i] >= t.c[0][i - 1]);
+        pset_free(&s);
+        pset_free(&t);
+        ry_cells_free(&cl);
+        ry_cells_free(&fresh);
+    }
+}
+
 static void expect_error(ry_status got, ry_status want, const ry_error *err, const char *part) {
     assert_int_equal(got, want);
     if (part && !strstr(err->msg, part)) fail_msg("message \"%s\" lacks \"%s\"", err->msg, part);
@@ -481,21 +513,14 @@ static void test_errors(void **state) {
 int main(int argc, char **argv) {
     if (argc > 1) cmocka_set_test_filter(argv[1]);
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_uniform_2d),
-        cmocka_unit_test(test_uniform_3d),
-        cmocka_unit_test(test_uniform_1d),
-        cmocka_unit_test(test_clustered),
-        cmocka_unit_test(test_lattice_2d),
-        cmocka_unit_test(test_lattice_3d),
-        cmocka_unit_test(test_periodic_2d),
-        cmocka_unit_test(test_periodic_3d_wide),
-        cmocka_unit_test(test_periodic_3d_narrow),
-        cmocka_unit_test(test_thread_count),
-        cmocka_unit_test(test_small_sets),
-        cmocka_unit_test(test_outside_box),
-        cmocka_unit_test(test_sparse_grid_capped),
-        cmocka_unit_test(test_reuse),
-        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_uniform_2d),         cmocka_unit_test(test_uniform_3d),
+        cmocka_unit_test(test_uniform_1d),         cmocka_unit_test(test_clustered),
+        cmocka_unit_test(test_lattice_2d),         cmocka_unit_test(test_lattice_3d),
+        cmocka_unit_test(test_periodic_2d),        cmocka_unit_test(test_periodic_3d_wide),
+        cmocka_unit_test(test_periodic_3d_narrow), cmocka_unit_test(test_thread_count),
+        cmocka_unit_test(test_small_sets),         cmocka_unit_test(test_outside_box),
+        cmocka_unit_test(test_sparse_grid_capped), cmocka_unit_test(test_reuse),
+        cmocka_unit_test(test_permuted),           cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
