@@ -192,7 +192,7 @@ struct ry_sim {
     int checked; /* set by a scheme whose last loop of a step also made the guard check
                     (src/core/guard_check.h), with the tallies below; the run loop then gives
                     the verdict without another pass, and clears this */
-    size_t check_first, check_fluid, check_outside;
+    size_t check_bad, check_fluid, check_outside;
     void *snapshot; /* the last good state (ry_sim_snapshot_*) */
 };
 

@@ -87,9 +87,9 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         st = ry_open_update(sim, err);
         if (st != RY_OK) goto done;
         psteps += (double)sim->ps.n;
-        st = sim->checked ? ry_check_verdict(sim, sim->check_first, sim->check_fluid,
-                                             sim->check_outside, err)
-                          : ry_sim_check(sim, err);
+        st = sim->checked
+                 ? ry_check_verdict(sim, sim->check_bad, sim->check_fluid, sim->check_outside, err)
+                 : ry_sim_check(sim, err);
         sim->checked = 0;
         if (st != RY_OK) {
             keep_last_good(sim, err);

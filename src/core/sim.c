@@ -447,49 +447,60 @@ static const char *particle_problem(const ry_sim *sim, size_t i, char *why, size
     return NULL;
 }
 
-void ry_check_init(const ry_sim *sim, ry_check_ctx *c) {
+int ry_check_init(const ry_sim *sim, ry_check_ctx *c, double *inv_rho0) {
     const ry_particles *ps = &sim->ps;
     const ry_guard *g = &sim->guard;
     const int dim = sim->dim;
-    for (int m = 0; m < sim->nmat && m < 256; ++m) c->inv_rho0[m] = 1.0 / sim->mat[m].density;
+    int uniform = 1;
+    for (int m = 0; m < sim->nmat && m < 256; ++m) {
+        inv_rho0[m] = 1.0 / sim->mat[m].density;
+        uniform &= sim->mat[m].density == sim->mat[0].density;
+    }
     c->v2max = g->max_speed > 0 ? g->max_speed * g->max_speed : INFINITY;
     c->rmin = g->rho_min;
     c->rmax = g->rho_max > 0 ? g->rho_max : INFINITY;
     for (int d = 0; d < 3; ++d) {
         c->x[d] = ps->f[RY_F_X + (d < dim ? d : 0)];
         c->v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+        c->lo[d] = d < dim ? sim->box.lo[d] : -INFINITY;
+        c->hi[d] = d < dim ? sim->box.hi[d] : INFINITY;
     }
     c->rho = ps->f[RY_F_RHO];
     c->p = ps->f[RY_F_P];
     c->kind = ps->kind;
-    c->material = ps->material;
-    c->lo = sim->box.lo;
-    c->hi = sim->box.hi;
+    return uniform;
 }
 
 /* Sets under 4096 particles are checked on one thread: for a beam of a few hundred particles a
  * parallel region per step costs more than the check. */
 /* clang-format off */
-#define RY_CHECK_LOOP_(DIM)                                                                        \
-    _Pragma("omp parallel for schedule(static) reduction(min : first) reduction(+ : fluid, outside) if (n >= 4096)") \
-    for (size_t i = 0; i < n; ++i) ry_check_tally(&c, i, DIM, &first, &fluid, &outside);
+#define RY_CHECK_LOOP_(DIM, INV)                                                                   \
+    _Pragma("omp parallel for simd schedule(static) reduction(+ : bad, fluid, outside) if (n >= 4096)") \
+    for (size_t i = 0; i < n; ++i) ry_check_tally(&c, i, DIM, INV, &bad, &fluid, &outside);
 /* clang-format on */
 
 ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
     const size_t n = sim->ps.n;
-    size_t first = SIZE_MAX, fluid = 0, outside = 0;
+    const uint8_t *material = sim->ps.material;
+    size_t bad = 0, fluid = 0, outside = 0;
     ry_check_ctx c;
-    ry_check_init(sim, &c);
-    /* One pass without branches on the common path; the diagnosis is made afterwards. */
-    if (sim->dim == 2) {
-        RY_CHECK_LOOP_(2)
+    double inv_rho0[256];
+    const int uniform = ry_check_init(sim, &c, inv_rho0);
+    const double inv0 = inv_rho0[0];
+    /* One pass without branches; the diagnosis is made afterwards. */
+    if (uniform && sim->dim == 2) {
+        RY_CHECK_LOOP_(2, inv0)
+    } else if (uniform) {
+        RY_CHECK_LOOP_(3, inv0)
+    } else if (sim->dim == 2) {
+        RY_CHECK_LOOP_(2, inv_rho0[material[i]])
     } else {
-        RY_CHECK_LOOP_(3)
+        RY_CHECK_LOOP_(3, inv_rho0[material[i]])
     }
-    return ry_check_verdict(sim, first, fluid, outside, err);
+    return ry_check_verdict(sim, bad, fluid, outside, err);
 }
 
-ry_status ry_check_verdict(const ry_sim *sim, size_t first, size_t fluid, size_t outside,
+ry_status ry_check_verdict(const ry_sim *sim, size_t nbad, size_t fluid, size_t outside,
                            ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const ry_guard *g = &sim->guard;
@@ -497,10 +508,10 @@ ry_status ry_check_verdict(const ry_sim *sim, size_t first, size_t fluid, size_t
     const size_t n = ps->n;
     const double *x[3];
     for (int d = 0; d < 3; ++d) x[d] = ps->f[RY_F_X + (d < dim ? d : 0)];
-    size_t bad = 0;
+    size_t bad = 0, first = 0;
     char why[160], what[160] = "";
-    if (first != SIZE_MAX) {
-        for (size_t i = first; i < n; ++i) {
+    if (nbad > 0) {
+        for (size_t i = 0; i < n; ++i) {
             const char *w = particle_problem(sim, i, why, sizeof why);
             if (!w) continue;
             if (!bad) {

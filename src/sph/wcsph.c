@@ -1801,10 +1801,10 @@ static void fast_final_kick(ry_sim *sim, const wcsph *w, double dt, int cont) {
     const double hdt = 0.5 * dt;
     const uint8_t *restrict kind = ps->kind;
     ry_check_ctx chk;
-    ry_check_init(sim, &chk);
-    size_t first = SIZE_MAX, fluid = 0, outside = 0, nbad = 0;
-    int one_rho0 = 1;
-    for (int m = 1; m < sim->nmat; ++m) one_rho0 &= sim->mat[m].density == sim->mat[0].density;
+    double inv_rho0[256];
+    const int uniform = ry_check_init(sim, &chk, inv_rho0);
+    const uint8_t *material = ps->material;
+    size_t bad = 0, fluid = 0, outside = 0;
 #pragma omp parallel
     {
         for (int d = 0; d < dim; ++d) {
@@ -1821,43 +1821,21 @@ static void fast_final_kick(ry_sim *sim, const wcsph *w, double dt, int cont) {
             for (size_t i = 0; i < n; ++i)
                 rho[i] = kind[i] == RY_KIND_FLUID ? rh[i] + hdt * dr[i] : rho[i];
         }
-        if (one_rho0) {
-            /* One reference density: the same tests as ry_check_one over contiguous arrays. */
-            const double *restrict x0 = chk.x[0], *restrict x1 = chk.x[1], *restrict x2 = chk.x[2];
-            const double *restrict v0 = chk.v[0], *restrict v1 = chk.v[1], *restrict v2 = chk.v[2];
-            const double *restrict rho = chk.rho, *restrict p = chk.p;
-            const double inv0 = chk.inv_rho0[0], v2max = chk.v2max, rmin = chk.rmin,
-                         rmax = chk.rmax;
-            const double lo0 = chk.lo[0], lo1 = chk.lo[1], lo2 = dim > 2 ? chk.lo[2] : -INFINITY;
-            const double hi0 = chk.hi[0], hi1 = chk.hi[1], hi2 = dim > 2 ? chk.hi[2] : INFINITY;
-            const double z = dim > 2 ? 1.0 : 0.0;
-#pragma omp for simd schedule(static) nowait reduction(+ : nbad, fluid, outside)
-            for (size_t i = 0; i < n; ++i) {
-                const double a0 = x0[i], a1 = x1[i], a2 = z * x2[i];
-                const double b0 = v0[i], b1 = v1[i], b2 = z * v2[i], r = rho[i];
-                const double q = r * inv0, sp = b0 * b0 + b1 * b1 + b2 * b2;
-                const int isf = kind[i] == RY_KIND_FLUID;
-                const int fin = (fabs(a0) <= DBL_MAX) & (fabs(a1) <= DBL_MAX) &
-                                (fabs(a2) <= DBL_MAX) & (fabs(b0) <= DBL_MAX) &
-                                (fabs(b1) <= DBL_MAX) & (fabs(b2) <= DBL_MAX) &
-                                (fabs(p[i]) <= DBL_MAX) & (r > 0) & (r <= DBL_MAX);
-                const int ok = fin & (sp <= v2max) & ((isf == 0) | ((q >= rmin) & (q <= rmax)));
-                const int in = (a0 >= lo0) & (a0 < hi0) & (a1 >= lo1) & (a1 < hi1) &
-                               (x2[i] >= lo2) & (x2[i] < hi2);
-                fluid += (size_t)isf;
-                outside += (size_t)(isf & (in == 0));
-                nbad += (size_t)(ok == 0); /* the verdict finds them */
-            }
-        } else if (dim == 2) {
-#pragma omp for schedule(static) nowait reduction(min : first) reduction(+ : fluid, outside)
-            for (size_t i = 0; i < n; ++i) ry_check_tally(&chk, i, 2, &first, &fluid, &outside);
+        const ry_check_ctx c = chk;
+        const double inv0 = inv_rho0[0];
+        if (uniform && dim == 2) {
+#pragma omp for simd schedule(static) nowait reduction(+ : bad, fluid, outside)
+            for (size_t i = 0; i < n; ++i) ry_check_tally(&c, i, 2, inv0, &bad, &fluid, &outside);
+        } else if (uniform) {
+#pragma omp for simd schedule(static) nowait reduction(+ : bad, fluid, outside)
+            for (size_t i = 0; i < n; ++i) ry_check_tally(&c, i, 3, inv0, &bad, &fluid, &outside);
         } else {
-#pragma omp for schedule(static) nowait reduction(min : first) reduction(+ : fluid, outside)
-            for (size_t i = 0; i < n; ++i) ry_check_tally(&chk, i, 3, &first, &fluid, &outside);
+#pragma omp for schedule(static) nowait reduction(+ : bad, fluid, outside)
+            for (size_t i = 0; i < n; ++i)
+                ry_check_tally(&c, i, dim, inv_rho0[material[i]], &bad, &fluid, &outside);
         }
     }
-    if (nbad > 0) first = 0;
-    sim->check_first = first;
+    sim->check_bad = bad;
     sim->check_fluid = fluid;
     sim->check_outside = outside;
     sim->checked = 1;
@@ -1897,22 +1875,15 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     n = ps->n;
     /* The second half kick, and the guard check of the new state in the same pass. */
     ry_check_ctx chk;
-    ry_check_init(sim, &chk);
-    size_t first = SIZE_MAX, fluid = 0, outside = 0;
-    if (dim == 2) {
-#pragma omp parallel for schedule(static) reduction(min : first) reduction(+ : fluid, outside)
-        for (size_t i = 0; i < n; ++i) {
-            final_kick(sim, w, i, dt, cont);
-            ry_check_tally(&chk, i, 2, &first, &fluid, &outside);
-        }
-    } else {
-#pragma omp parallel for schedule(static) reduction(min : first) reduction(+ : fluid, outside)
-        for (size_t i = 0; i < n; ++i) {
-            final_kick(sim, w, i, dt, cont);
-            ry_check_tally(&chk, i, 3, &first, &fluid, &outside);
-        }
+    double inv_rho0[256];
+    ry_check_init(sim, &chk, inv_rho0);
+    size_t bad = 0, fluid = 0, outside = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bad, fluid, outside)
+    for (size_t i = 0; i < n; ++i) {
+        final_kick(sim, w, i, dt, cont);
+        ry_check_tally(&chk, i, dim, inv_rho0[ps->material[i]], &bad, &fluid, &outside);
     }
-    sim->check_first = first;
+    sim->check_bad = bad;
     sim->check_fluid = fluid;
     sim->check_outside = outside;
     sim->checked = 1;
