@@ -1,9 +1,9 @@
 #!/bin/sh
 # Installs the Debian packages ryushi needs to build, test, fuzz (clang with libFuzzer and its
-# OpenMP runtime) and draw its pictures.
+# OpenMP runtime), draw its pictures and run distributed (OpenMPI, for ryushi-mpi).
 # Idempotent: packages already present are skipped; nothing is downloaded otherwise.
 set -eu
-PKGS="cmake make gcc pkg-config libfyaml-dev libcmocka-dev libcairo2-dev zlib1g-dev clang-format clang libclang-rt-14-dev libomp-dev"
+PKGS="cmake make gcc pkg-config libfyaml-dev libcmocka-dev libcairo2-dev zlib1g-dev clang-format clang libclang-rt-14-dev libomp-dev libopenmpi-dev openmpi-bin"
 missing=""
 for p in $PKGS; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -60,6 +60,33 @@ double ry_sim_bytes_per_particle(const ry_sim *sim);
 const ry_scheme_type *const *ry_schemes(void);
 const ry_scheme_type *ry_scheme_find(const char *name);
 
+/* A distributed run (the ryushi-mpi program, src/parallel/): each process (rank) holds the
+ * particles of its subdomain and copies of its neighbours' particles near its boundary (halo
+ * particles, flagged in sim->halo). The core calls these hooks where a serial run would act
+ * alone; a serial run has sim->par NULL. Every hook is collective: all ranks call it together. */
+typedef struct ry_par_ops {
+    /* Logical AND of flag over the ranks. */
+    int (*all)(ry_sim *sim, int flag);
+    /* Largest of v over the ranks. */
+    double (*max)(ry_sim *sim, double v);
+    /* At a neighbour search: drops the halo, moves particles to the ranks that own their
+     * positions (re-balancing the subdomains when needed) and receives the new halo, which
+     * reaches 2 * reach beyond the subdomain (so that a quantity of a halo particle computed
+     * from its own neighbours, e.g. a wall's pressure, is right where an owned particle uses
+     * it). */
+    ry_status (*redistribute)(ry_sim *sim, double reach, ry_error *err);
+    /* Between searches: the halo particles' fields from their owners. */
+    ry_status (*halo_update)(ry_sim *sim, ry_error *err);
+    /* After the particles were reordered (ry_particles_permute with order). */
+    void (*permuted)(ry_sim *sim, const uint32_t *order);
+    /* The guard's verdict from this rank's tallies (see ry_check_verdict). */
+    ry_status (*verdict)(const ry_sim *sim, size_t bad, size_t fluid, size_t outside,
+                         ry_error *err);
+    /* Output (VTK, .pvd entry, series.csv row) and checkpoints of the whole set. */
+    ry_status (*output)(ry_sim *sim, ry_error *err);
+    ry_status (*checkpoint)(ry_sim *sim, char *path, size_t path_size, ry_error *err);
+} ry_par_ops;
+
 /* A measured quantity written as a column of series.csv. */
 typedef struct ry_probe {
     const char *name;
@@ -194,7 +221,21 @@ struct ry_sim {
                     the verdict without another pass, and clears this */
     size_t check_bad, check_fluid, check_outside;
     void *snapshot; /* the last good state (ry_sim_snapshot_*) */
+
+    /* distributed runs (NULL in a serial run) */
+    const ry_par_ops *par;
+    void *par_state;
+    const uint8_t *halo; /* halo[i]: particle i is a halo copy (see ry_par_ops) */
 };
+
+/* Whether particle i is a halo copy of another rank's particle (never in a serial run). */
+static inline int ry_sim_is_halo(const ry_sim *sim, size_t i) {
+    return sim->halo && sim->halo[i];
+}
+
+/* Writes the state at an output time: ry_sim_write_output, or in a distributed run the
+ * whole set through the parallel layer. */
+ry_status ry_sim_output(ry_sim *sim, ry_error *err);
 
 /* Builds the simulation from a case; checks every key (unknown keys are errors). out_dir may
  * be NULL to take the case's output.folder. */

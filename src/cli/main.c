@@ -11,12 +11,27 @@
 #include "ryushi/case.h"
 #include "ryushi/checkpoint.h"
 #include "ryushi/sim.h"
+#ifdef RY_MPI_CLI
+#include "parallel/mpi_dd.h"
+#endif
 
 static volatile sig_atomic_t stop_requested = 0;
 
 static void on_signal(int sig) {
     (void)sig;
     stop_requested = 1;
+}
+
+/* SIGINT and SIGTERM end a run cleanly (a checkpoint is written); a file-size limit reached is
+ * a write error to report (like a full disk), not a kill. */
+static void catch_signals(void) {
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    signal(SIGXFSZ, SIG_IGN);
 }
 
 static void usage(FILE *fp) {
@@ -198,14 +213,7 @@ static int cmd_run(int argc, char **argv) {
            a.case_path, sim.scheme->name, sim.dim, sim.ps.n, omp_get_max_threads(), sim.out_dir);
     if (used[0]) printf("restarting from %s (step %ld, t = %.6g s)\n", used, sim.step, sim.t);
     fflush(stdout);
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-    /* A file-size limit reached is a write error to report (like a full disk), not a kill. */
-    signal(SIGXFSZ, SIG_IGN);
+    catch_signals();
     ry_run_hooks hooks = {on_progress, &pc, pc.tty ? 0.5 : 10.0, &stop_requested};
     ry_run_stats stats = {0};
     st = ry_sim_run(&sim, &hooks, &stats, &err);
@@ -226,6 +234,95 @@ static int cmd_run(int argc, char **argv) {
     free(a.sets);
     return rc;
 }
+
+#ifdef RY_MPI_CLI
+/* ryushi-mpi run: the case on every rank of MPI_COMM_WORLD (src/parallel/mpi_dd.h). Every
+ * rank sets the case up; rank 0 also keeps a second copy through which output and
+ * checkpoints are written. Rank 0 reports. */
+static int cmd_run_mpi(int argc, char **argv) {
+    int rank, size;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    run_args a;
+    int rc = parse_args(argc, argv, 2, &a, 1);
+    if (rc) {
+        free(a.sets);
+        return rc;
+    }
+    const char *imb = getenv("RY_MPI_IMBALANCE");
+    const double imbalance = imb && *imb ? atof(imb) : 1.1;
+    ry_error err = {0};
+    ry_case *c = NULL, *cv = NULL;
+    ry_sim sim, view;
+    memset(&view, 0, sizeof view);
+    if (a.restart && !a.out_dir) a.out_dir = a.restart;
+    char used[4300] = "", skipped[2048] = "";
+    ry_status st = setup_case(&a, &c, &sim, &err);
+    if (st == RY_OK && a.restart)
+        st = ry_sim_restart(&sim, a.restart, used, sizeof used, skipped, sizeof skipped, &err);
+    if (st == RY_OK && rank == 0) {
+        st = setup_case(&a, &cv, &view, &err);
+        if (st == RY_OK) st = ry_sim_open_output(&view, cv, &err);
+        if (st == RY_OK && a.restart)
+            st = ry_sim_restart(&view, a.restart, used, sizeof used, skipped, sizeof skipped, &err);
+    }
+    if (st == RY_OK)
+        st = ry_mpi_attach(&sim, rank == 0 ? &view : NULL, MPI_COMM_WORLD, imbalance, &err);
+    /* The lowest rank that failed reports; all stop. */
+    int mine = st != RY_OK ? rank : size, who;
+    MPI_Allreduce(&mine, &who, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (who < size) {
+        rc = rank == who ? fail(&err) : ry_status_exit_code(RY_ERR_INPUT);
+        MPI_Bcast(&rc, 1, MPI_INT, who, MPI_COMM_WORLD);
+        goto out;
+    }
+    if (rank == 0 && skipped[0])
+        fprintf(stderr, "ryushi: warning: skipped damaged checkpoint(s): %s\n", skipped);
+    progress_ctx pc = {isatty(STDERR_FILENO)};
+    if (rank == 0) {
+        printf("ryushi %s: case %s, %s, %dD, %zu particles, %d rank(s) x %d thread(s), output in "
+               "%s\n",
+               RY_VERSION, a.case_path, sim.scheme->name, sim.dim, view.ps.n, size,
+               omp_get_max_threads(), view.out_dir);
+        if (used[0]) printf("restarting from %s (step %ld, t = %.6g s)\n", used, sim.step, sim.t);
+        fflush(stdout);
+    }
+    catch_signals();
+    ry_run_hooks hooks = {rank == 0 ? on_progress : NULL, &pc, pc.tty ? 0.5 : 10.0,
+                          &stop_requested};
+    ry_run_stats stats = {0};
+    st = ry_sim_run(&sim, &hooks, &stats, &err);
+    if (rank == 0 && pc.tty) fprintf(stderr, "\n");
+    rc = st != RY_OK ? ry_status_exit_code(st) : 0;
+    if (st != RY_OK && rank == 0) fail(&err);
+    ry_mpi_stats ms;
+    ry_mpi_get_stats(&sim, &ms);
+    double comm_max, wall_max;
+    long halo = (long)ms.halo, halo_tot;
+    MPI_Reduce(&ms.comm_s, &comm_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+    MPI_Reduce(&stats.wall_s, &wall_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+    MPI_Reduce(&halo, &halo_tot, 1, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    if (rank == 0) {
+        /* Particle-steps of the whole set (halo copies are not counted as work). */
+        const double psteps = (double)view.ps.n * (double)stats.steps;
+        printf("summary status=%s steps=%ld particles=%zu t=%.6g wall_s=%.3f "
+               "particle_steps_per_s=%.4g ranks=%d threads=%d comm_s=%.3f comm_share=%.3f "
+               "halo=%ld owned_max=%zu rebalances=%ld outputs=%d output=%s\n",
+               st == RY_OK ? "ok" : ry_status_name(st), stats.steps, view.ps.n, sim.t, wall_max,
+               psteps / (wall_max > 0 ? wall_max : 1e-9), size, omp_get_max_threads(), comm_max,
+               wall_max > 0 ? comm_max / wall_max : 0.0, halo_tot, ms.owned_max, ms.rebalances,
+               sim.output_index, view.out_dir);
+    }
+out:
+    ry_mpi_detach(&sim);
+    ry_sim_free(&sim);
+    ry_sim_free(&view);
+    ry_case_free(c);
+    ry_case_free(cv);
+    free(a.sets);
+    return rc;
+}
+#endif
 
 static int cmd_info(int argc, char **argv) {
     run_args a;
@@ -318,6 +415,37 @@ static int cmd_list(int schemes) {
     }
     return 0;
 }
+
+#ifdef RY_MPI_CLI
+int main_serial(int argc, char **argv);
+
+static int main_mpi(int argc, char **argv) {
+    int size;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (argc >= 2 && strcmp(argv[1], "run") == 0) return cmd_run_mpi(argc, argv);
+    /* On one process, the other commands are ryushi's. */
+    if (size == 1 && argc >= 2 && strcmp(argv[1], "--help") != 0) return main_serial(argc, argv);
+    if (argc >= 2 && strcmp(argv[1], "--version") == 0) {
+        printf("ryushi-mpi %s\n", RY_VERSION);
+        return 0;
+    }
+    fprintf(argc >= 2 && strcmp(argv[1], "--help") == 0 ? stdout : stderr,
+            "usage: mpirun -np N ryushi-mpi run CASE [-o DIR] [--threads N] [--set KEY=VALUE]... "
+            "[--restart DIR]\n"
+            "  the case on N ranks (domain decomposition; docs/parallel.md); the other commands "
+            "are ryushi's\n");
+    return argc >= 2 && strcmp(argv[1], "--help") == 0 ? 0 : 2;
+}
+
+int main(int argc, char **argv) {
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    MPI_Init(&argc, &argv);
+    int rc = main_mpi(argc, argv);
+    MPI_Finalize();
+    return rc;
+}
+#define main main_serial
+#endif
 
 int main(int argc, char **argv) {
     setvbuf(stdout, NULL, _IOLBF, 0); /* reports appear line by line, also in a pipe or file */

@@ -278,6 +278,7 @@ static void ck_path(char *buf, size_t size, const char *dir, long step) {
 }
 
 ry_status ry_sim_checkpoint_now(ry_sim *sim, char *path, size_t path_size, ry_error *err) {
+    if (sim->par) return sim->par->checkpoint(sim, path, path_size, err);
     char dir[4096], file[4200];
     snprintf(dir, sizeof dir, "%s/checkpoints", sim->out_dir);
     RY_TRY(ry_mkdir_p(dir, err));

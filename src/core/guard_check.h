@@ -49,8 +49,12 @@ static inline __attribute__((always_inline)) void ry_check_tally(const ry_check_
 }
 
 /* The verdict from the tallies over all particles (a diagnosis naming the first bad particle,
- * or RY_OK). */
+ * or RY_OK); in a distributed run, over all ranks. */
 ry_status ry_check_verdict(const ry_sim *sim, size_t bad, size_t fluid, size_t outside,
                            ry_error *err);
+/* The same from this process's particles alone (halo copies skipped): what the parallel
+ * layer's verdict uses on the rank that names a bad particle. */
+ry_status ry_check_verdict_here(const ry_sim *sim, size_t bad, size_t fluid, size_t outside,
+                                ry_error *err);
 
 #endif

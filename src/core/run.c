@@ -17,6 +17,13 @@ static int checkpoint_due(ry_sim *sim, double eps) {
 
 /* On instability: the last good state goes to disk (VTK and checkpoint), named in the message. */
 static void keep_last_good(ry_sim *sim, ry_error *err) {
+    if (!sim->snapshot && sim->par) {
+        size_t l = strlen(err->msg);
+        snprintf(err->msg + l, sizeof err->msg - l,
+                 "; a distributed run keeps no last-good snapshot: its newest output and "
+                 "checkpoint in %s remain",
+                 sim->out_dir ? sim->out_dir : "the output folder");
+    }
     if (!sim->snapshot) return;
     char path[4300];
     ry_error e = {0};
@@ -32,6 +39,10 @@ static void keep_last_good(ry_sim *sim, ry_error *err) {
     }
 }
 
+ry_status ry_sim_output(ry_sim *sim, ry_error *err) {
+    return sim->par ? sim->par->output(sim, err) : ry_sim_write_output(sim, err);
+}
+
 ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err) {
     double t0 = ry_wall_time(), last_report = t0;
     long step0 = sim->step;
@@ -40,7 +51,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
     ry_error local;
     if (!err) err = &local;
     if (sim->output_index == 0) {
-        RY_TRY(ry_sim_write_output(sim, err));
+        RY_TRY(ry_sim_output(sim, err));
         sim->next_output = sim->t + sim->output_interval;
     }
     /* The state handed in must be sound before it becomes the first "last good" one. */
@@ -50,7 +61,9 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
     const double eps = 1e-12 * sim->t_end;
     char ckpt[4300] = "";
     while (sim->t < sim->t_end - eps && sim->step < sim->max_steps && !sim->finished) {
-        if (hooks && hooks->stop && *hooks->stop) {
+        int stop = hooks && hooks->stop && *hooks->stop;
+        if (sim->par) stop = !sim->par->all(sim, !stop); /* all ranks stop at the same step */
+        if (stop) {
             st = RY_ERR_INTERRUPTED;
             break;
         }
@@ -60,6 +73,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             if (st == RY_ERR_UNSTABLE) keep_last_good(sim, err);
             goto done;
         }
+        if (sim->par) dt = -sim->par->max(sim, -dt);
         if (sim->dt_max > 0 && dt > sim->dt_max) dt = sim->dt_max;
         if (!(dt > 0) || !isfinite(dt)) {
             st = ry_error_set(err, RY_ERR_UNSTABLE,
@@ -100,7 +114,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             if (st != RY_OK) goto done;
         }
         if (sim->t >= sim->next_output - eps) {
-            st = ry_sim_write_output(sim, err);
+            st = ry_sim_output(sim, err);
             if (st != RY_OK) goto done;
             while (sim->next_output <= sim->t + eps) sim->next_output += sim->output_interval;
         }
@@ -140,7 +154,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         ry_error *e = st == RY_OK ? err : &tmp;
         if (sim->output_index == 0 || fabs(sim->t - (sim->next_output - sim->output_interval)) >
                                           1e-9 * sim->output_interval) {
-            ry_status ws = ry_sim_write_output(sim, e);
+            ry_status ws = ry_sim_output(sim, e);
             if (ws != RY_OK && st == RY_OK) st = ws;
         }
     }

@@ -334,10 +334,13 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
                                      : sim->nl.offset && sim->nl.n == ps->n;
     const int known = sim->drift_known;
     sim->drift_known = 0;
-    if (have && !sim->nl_restore && radius == sim->nl_radius && skin > 0 &&
-        (known ? sim->drift2 : max_drift2(sim)) < 0.25 * skin * skin) {
+    int reuse = have && !sim->nl_restore && radius == sim->nl_radius && skin > 0 &&
+                (known ? sim->drift2 : max_drift2(sim)) < 0.25 * skin * skin;
+    /* A distributed run searches on every rank when any rank must. */
+    if (sim->par) reuse = sim->par->all(sim, reuse);
+    if (reuse) {
         sim->nl_reuses++;
-        return RY_OK;
+        return sim->par ? sim->par->halo_update(sim, err) : RY_OK;
     }
     const double *x[3];
     const double reach = radius + skin;
@@ -357,11 +360,13 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
         }
     }
     sim->nl_restore = 0;
+    if (sim->par) RY_TRY(sim->par->redistribute(sim, reach, err));
     ry_particles_coords(ps, x);
     RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
     if (sim->sort_always || (sim->reorder_every > 0 && sim->searches % sim->reorder_every == 0)) {
         if (sim->sort_always) ry_cells_sort_x(&sim->cells, x[0]);
         RY_TRY(ry_particles_permute(ps, sim->cells.order, err));
+        if (sim->par) sim->par->permuted(sim, sim->cells.order);
         ry_particles_coords(ps, x);
         ry_cells_permuted(&sim->cells);
     }
@@ -502,6 +507,12 @@ ry_status ry_sim_check(const ry_sim *sim, ry_error *err) {
 
 ry_status ry_check_verdict(const ry_sim *sim, size_t nbad, size_t fluid, size_t outside,
                            ry_error *err) {
+    if (sim->par) return sim->par->verdict(sim, nbad, fluid, outside, err);
+    return ry_check_verdict_here(sim, nbad, fluid, outside, err);
+}
+
+ry_status ry_check_verdict_here(const ry_sim *sim, size_t nbad, size_t fluid, size_t outside,
+                                ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const ry_guard *g = &sim->guard;
     const int dim = sim->dim;
@@ -512,6 +523,7 @@ ry_status ry_check_verdict(const ry_sim *sim, size_t nbad, size_t fluid, size_t 
     char why[160], what[160] = "";
     if (nbad > 0) {
         for (size_t i = 0; i < n; ++i) {
+            if (ry_sim_is_halo(sim, i)) continue;
             const char *w = particle_problem(sim, i, why, sizeof why);
             if (!w) continue;
             if (!bad) {
@@ -532,7 +544,7 @@ ry_status ry_check_verdict(const ry_sim *sim, size_t nbad, size_t fluid, size_t 
     if (g->max_outside_fraction > 0 && fluid > 0 &&
         (double)outside > g->max_outside_fraction * (double)fluid) {
         for (size_t i = 0; i < ps->n; ++i) {
-            if (ps->kind[i] != RY_KIND_FLUID) continue;
+            if (ps->kind[i] != RY_KIND_FLUID || ry_sim_is_halo(sim, i)) continue;
             int out = 0;
             for (int d = 0; d < dim; ++d)
                 out |= !(x[d][i] >= sim->box.lo[d] && x[d][i] < sim->box.hi[d]);

@@ -1624,6 +1624,25 @@ static size_t wcsph_bytes(const wcsph *w) {
            w->fpack_cap * (3 * sizeof(double) + FK_COUNT * sizeof(float)) + nr;
 }
 
+/* In a distributed run: the largest acceleration and speed of the fluid over all ranks, from
+ * owned particles only (a halo particle's rates lack the neighbours beyond the halo). */
+static void global_maxima(ry_sim *sim, force_out *res) {
+    const ry_particles *ps = &sim->ps;
+    double a2 = 0, v2 = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ry_sim_is_halo(sim, i)) continue;
+        double a = 0, v = 0;
+        for (int d = 0; d < sim->dim; ++d) {
+            a += ps->f[RY_F_AX + d][i] * ps->f[RY_F_AX + d][i];
+            v += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        }
+        a2 = a > a2 ? a : a2;
+        v2 = v > v2 ? v : v2;
+    }
+    res->amax2 = sim->par->max(sim, a2);
+    res->vmax2 = sim->par->max(sim, v2);
+}
+
 /* Evaluates all rates at the current (predicted) state. */
 static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
@@ -1631,6 +1650,7 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     if (w->variable_h) {
         for (size_t i = 0; i < ps->n; ++i) hmax = fmax(hmax, ps->f[RY_F_H][i]);
     }
+    if (sim->par) hmax = sim->par->max(sim, hmax); /* one search radius on every rank */
     w->hmax = hmax;
     RY_TRY(ry_sim_neighbors(sim, sim->kernel.kappa * hmax, err));
     if (w->fast && w->rng_gen != sim->nl_generation) RY_TRY(fast_ranges(sim, w, err));
@@ -1653,6 +1673,7 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     }
     force_out res;
     RY_TRY(fluid_forces(sim, w, &res, err));
+    if (sim->par) global_maxima(sim, &res);
     sim->scheme_bytes = wcsph_bytes(w);
     w->amax = sqrt(res.amax2);
     w->vmax = sqrt(res.vmax2);

@@ -1,0 +1,130 @@
+#!/bin/sh
+# Distributed runs (ryushi-mpi, docs/parallel.md): the dam break and the lid-driven cavity on 1,
+# 2 and 4 ranks agree with the serial program (1 rank: series.csv byte for byte; more ranks:
+# within a relative 1e-5, the sums being taken in another order); a run stopped at a checkpoint
+# and continued ends bitwise identical to an uninterrupted one on the same rank count, and
+# continues on another rank count; schemes that cannot run distributed yet are refused.
+# Skipped (exit 77) where ryushi-mpi or mpirun is absent.
+# usage: test_mpi.sh RYUSHI SOURCE_DIR
+set -u
+RY=$1
+SRC=$2
+RYM="$(dirname "$RY")/ryushi-mpi"
+if [ ! -x "$RYM" ] || ! command -v mpirun > /dev/null 2>&1; then
+    echo "skipped: MPI is not installed (ryushi-mpi or mpirun missing; scripts/install-deps.sh)"
+    exit 77
+fi
+. "$SRC/tests/cli/lib.sh"
+# OpenMPI refuses root unless told; one thread per rank on this two-core machine.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+
+# mrun NP NAME CASE ARGS...: NP ranks, output in $T/NAME, exit code in $rc
+mrun() {
+    np=$1; name=$2; case_file=$3; shift 3
+    mpirun --oversubscribe -np "$np" "$RYM" run "$case_file" -o "$T/$name" "$@" \
+        > "$T/$name.log" 2>&1
+    rc=$?
+}
+
+# close A B COLUMNS TOL WHAT: every row of A's series.csv matches B's in the named columns to
+# the relative tolerance TOL (absolute below 1e-9), the other columns exactly where they are
+# counts (t, step, particles)
+close() {
+    if awk -F, -v cols="$3" -v tol="$4" '
+        NR == FNR { a[FNR] = $0; next }
+        FNR == 1 { n = split($0, h, ","); split(cols, want, " ");
+                   for (k in want) for (j = 1; j <= n; j++) if (h[j] == want[k]) use[j] = 1;
+                   next }
+        { split(a[FNR], x, ","); rows++
+          if (x[1] != $1 || x[2] != $2 || x[4] != $4) { print "row " FNR ": t/step/particles " x[1] "," x[2] "," x[4] " vs " $1 "," $2 "," $4; bad = 1 }
+          for (j in use) { d = x[j] - $j; if (d < 0) d = -d; m = x[j] < 0 ? -x[j] : x[j];
+                           if (d > tol * m && d > 1e-9) { print "row " FNR " " h[j] ": " x[j] " vs " $j; bad = 1 } } }
+        END { if (rows < 3) { print "only " rows " rows"; bad = 1 } exit bad }' \
+        "$1/series.csv" "$2/series.csv" > "$T/close.out"; then
+        ok
+    else
+        bad "$5: $(head -5 "$T/close.out")"
+    fi
+}
+
+DAM="$SRC/cases/dam_break_seed.yaml"
+DSET="--set spacing=0.0125 --set time.end=0.2 --set time.output_interval=0.02"
+# shellcheck disable=SC2086
+"$RY" run "$DAM" -o "$T/dam_serial" $DSET > "$T/dam_serial.log" 2>&1 ||
+    bad "serial dam break failed: $(cat "$T/dam_serial.log")"
+
+# 1. Dam break on 1 rank: the serial program's series, byte for byte.
+# shellcheck disable=SC2086
+mrun 1 dam1 "$DAM" $DSET
+[ "$rc" -eq 0 ] || bad "dam break on 1 rank exited $rc: $(cat "$T/dam1.log")"
+cmp -s "$T/dam_serial/series.csv" "$T/dam1/series.csv" && ok ||
+    bad "dam break on 1 rank: series.csv differs from the serial run"
+
+# 2. Dam break on 2 and 4 ranks: front, kinetic energy and largest speed within 1e-5.
+for np in 2 4; do
+    # shellcheck disable=SC2086
+    mrun $np dam$np "$DAM" $DSET
+    [ "$rc" -eq 0 ] || bad "dam break on $np ranks exited $rc: $(cat "$T/dam$np.log")"
+    grep -q "ranks=$np " "$T/dam$np.log" && ok || bad "no $np-rank summary: $(cat "$T/dam$np.log")"
+    close "$T/dam_serial" "$T/dam$np" "front_x mass kinetic_energy max_speed outside in_wall" 1e-5 \
+        "dam break on $np ranks"
+    n=$(ls "$T/dam$np"/*.vtp | wc -l)
+    [ "$n" -eq 11 ] && grep -c "DataSet" "$T/dam$np/dam_break_seed.pvd" | grep -q "^11$" && ok ||
+        bad "dam break on $np ranks: $n VTK files for 11 output times"
+done
+
+# 3. Cavity (density summation, transport velocity, moving lid; profiles averaged from 0.5 s)
+# on 2 and 4 ranks.
+CAV="$SRC/cases/cavity_re100.yaml"
+CSET="--set spacing=0.025 --set time.end=1.0 --set profiles[0].average_from=0.5 --set profiles[1].average_from=0.5"
+# shellcheck disable=SC2086
+"$RY" run "$CAV" -o "$T/cav_serial" $CSET > "$T/cav_serial.log" 2>&1 ||
+    bad "serial cavity failed: $(cat "$T/cav_serial.log")"
+for np in 2 4; do
+    # shellcheck disable=SC2086
+    mrun $np cav$np "$CAV" $CSET
+    [ "$rc" -eq 0 ] || bad "cavity on $np ranks exited $rc: $(cat "$T/cav$np.log")"
+    close "$T/cav_serial" "$T/cav$np" "kinetic_energy max_speed mass" 1e-5 "cavity on $np ranks"
+    # the averaged centreline profile, column 4 (u), within 1e-6 m/s
+    if paste -d, "$T/cav_serial/profile_u_vertical_centreline.csv" \
+        "$T/cav$np/profile_u_vertical_centreline.csv" | awk -F, -v n=8 '
+        NR > 1 { d = $4 - $(4 + n); if (d < 0) d = -d; if (d > 1e-6) { print NR ": " $4 " vs " $(4 + n); bad = 1 } rows++ }
+        END { exit bad || rows < 100 }' > "$T/prof.out"; then ok; else
+        bad "cavity on $np ranks: centreline profile: $(head -3 "$T/prof.out")"
+    fi
+done
+
+# 4. Restart: checkpoints every 300 steps; a run stopped at step 600 and continued ends bitwise
+# identical to the uninterrupted run on 2 ranks, and continues on 4 ranks.
+CK="--set checkpoint.every_steps=300"
+# shellcheck disable=SC2086
+mrun 2 full "$DAM" $DSET $CK
+# shellcheck disable=SC2086
+mrun 2 part "$DAM" $DSET $CK --set time.max_steps=600
+[ -f "$T/part/checkpoints/checkpoint_0000000600.ryc" ] || bad "no checkpoint at step 600"
+cp -r "$T/part" "$T/part4"
+# shellcheck disable=SC2086
+mpirun --oversubscribe -np 2 "$RYM" run "$DAM" $DSET $CK --restart "$T/part" > "$T/part2.log" 2>&1 ||
+    bad "2-rank restart failed: $(cat "$T/part2.log")"
+grep -q "restarting from .*checkpoint_0000000600.ryc (step 600" "$T/part2.log" && ok ||
+    bad "restart did not name its checkpoint: $(cat "$T/part2.log")"
+n=0
+for f in "$T/full"/*.vtp "$T/full"/*.pvd "$T/full"/*.csv; do
+    n=$((n + 1))
+    cmp -s "$f" "$T/part/$(basename "$f")" || { bad "2-rank restart: $(basename "$f") differs"; n=-1000; }
+done
+[ "$n" -ge 13 ] && ok || bad "2-rank restart: only $n files compared"
+# shellcheck disable=SC2086
+mpirun --oversubscribe -np 4 "$RYM" run "$DAM" $DSET $CK --restart "$T/part4" > "$T/part4.log" 2>&1 ||
+    bad "4-rank restart of a 2-rank run failed: $(cat "$T/part4.log")"
+close "$T/full" "$T/part4" "front_x mass kinetic_energy max_speed" 1e-5 "2-rank run continued on 4 ranks"
+
+# 5. What cannot run distributed yet is refused by name.
+expect 2 "scheme 'iisph' runs on one rank only so far" \
+    mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/hydrostatic_iisph.yaml" -o "$T/iisph"
+expect 2 "periodic domains run on one rank only so far" \
+    mpirun --oversubscribe -np 2 "$RYM" run "$DAM" -o "$T/per" --set domain.periodic_x=true
+
+printf "mpi tests: "
+finish
