@@ -67,8 +67,13 @@ const ry_scheme_type *ry_scheme_find(const char *name);
 typedef struct ry_par_ops {
     /* Logical AND of flag over the ranks. */
     int (*all)(ry_sim *sim, int flag);
-    /* Largest of v over the ranks. */
+    /* Largest of v over the ranks, and the sum. */
     double (*max)(ry_sim *sim, double v);
+    double (*sum)(ry_sim *sim, double v);
+    /* A scheme's own per-particle array (ncomp values per particle, interleaved) from the
+     * owners to their halo copies: for solvers whose passes read their neighbours' results
+     * of the pass before (e.g. an iterative pressure solve). */
+    void (*sync)(ry_sim *sim, double *a, int ncomp);
     /* At a neighbour search: drops the halo, moves particles to the ranks that own their
      * positions (re-balancing the subdomains when needed) and receives the new halo, which
      * reaches 2 * reach beyond the subdomain (so that a quantity of a halo particle computed

@@ -297,9 +297,10 @@ static int cmd_run_mpi(int argc, char **argv) {
     if (st != RY_OK && rank == 0) fail(&err);
     ry_mpi_stats ms;
     ry_mpi_get_stats(&sim, &ms);
-    double comm_max, wall_max;
+    double comm_max, wall_max, part[3] = {ms.redist_s, ms.halo_s, ms.reduce_s}, part_max[3];
     long halo = (long)ms.halo, halo_tot;
     MPI_Reduce(&ms.comm_s, &comm_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+    MPI_Reduce(part, part_max, 3, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
     MPI_Reduce(&stats.wall_s, &wall_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
     MPI_Reduce(&halo, &halo_tot, 1, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
     if (rank == 0) {
@@ -307,11 +308,12 @@ static int cmd_run_mpi(int argc, char **argv) {
         const double psteps = (double)view.ps.n * (double)stats.steps;
         printf("summary status=%s steps=%ld particles=%zu t=%.6g wall_s=%.3f "
                "particle_steps_per_s=%.4g ranks=%d threads=%d comm_s=%.3f comm_share=%.3f "
-               "halo=%ld owned_max=%zu rebalances=%ld outputs=%d output=%s\n",
+               "redist_s=%.3f halo_s=%.3f reduce_s=%.3f halo=%ld owned_max=%zu rebalances=%ld "
+               "outputs=%d output=%s\n",
                st == RY_OK ? "ok" : ry_status_name(st), stats.steps, view.ps.n, sim.t, wall_max,
                psteps / (wall_max > 0 ? wall_max : 1e-9), size, omp_get_max_threads(), comm_max,
-               wall_max > 0 ? comm_max / wall_max : 0.0, halo_tot, ms.owned_max, ms.rebalances,
-               sim.output_index, view.out_dir);
+               wall_max > 0 ? comm_max / wall_max : 0.0, part_max[0], part_max[1], part_max[2],
+               halo_tot, ms.owned_max, ms.rebalances, sim.output_index, view.out_dir);
     }
 out:
     ry_mpi_detach(&sim);

@@ -267,7 +267,7 @@ static int par_all(ry_sim *sim, int flag) {
     double t0 = MPI_Wtime();
     int r;
     MPI_Allreduce(&flag, &r, 1, MPI_INT, MPI_LAND, P->comm);
-    P->st.comm_s += MPI_Wtime() - t0;
+    P->st.reduce_s += MPI_Wtime() - t0;
     return r;
 }
 
@@ -276,8 +276,51 @@ static double par_max(ry_sim *sim, double v) {
     if (isnan(v)) v = INFINITY; /* a NaN anywhere must reach every rank */
     double t0 = MPI_Wtime(), r;
     MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MAX, P->comm);
-    P->st.comm_s += MPI_Wtime() - t0;
+    P->st.reduce_s += MPI_Wtime() - t0;
     return r;
+}
+
+static double par_sum(ry_sim *sim, double v) {
+    par *P = get(sim);
+    double t0 = MPI_Wtime(), r;
+    MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_SUM, P->comm);
+    P->st.reduce_s += MPI_Wtime() - t0;
+    return r;
+}
+
+/* Sends the packed values (nv per particle of the send lists) and unpacks the received ones
+ * into the halo slots: the halo exchange between searches. */
+static double *halo_exchange(par *P, int nv) {
+    double *recv = rbuf(P, P->nrecv * (size_t)nv);
+    int nreq = 0;
+    size_t off = 0;
+    for (int r = 0; r < P->size; ++r) {
+        if (P->rcount[r] > 0)
+            MPI_Irecv(recv + off * (size_t)nv, P->rcount[r] * nv, MPI_DOUBLE, r, 7, P->comm,
+                      &P->req[nreq++]);
+        off += (size_t)P->rcount[r];
+    }
+    off = 0;
+    for (int r = 0; r < P->size; ++r) {
+        if (P->scount[r] > 0)
+            MPI_Isend(P->sbuf + off * (size_t)nv, P->scount[r] * nv, MPI_DOUBLE, r, 7, P->comm,
+                      &P->req[nreq++]);
+        off += (size_t)P->scount[r];
+    }
+    MPI_Waitall(nreq, P->req, MPI_STATUSES_IGNORE);
+    return recv;
+}
+
+static void par_sync(ry_sim *sim, double *a, int nc) {
+    par *P = get(sim);
+    const double t0 = MPI_Wtime();
+    double *send = sbuf(P, P->nsend * (size_t)nc);
+    for (size_t k = 0; k < P->nsend; ++k)
+        for (int c = 0; c < nc; ++c) send[k * (size_t)nc + c] = a[P->sidx[k] * (size_t)nc + c];
+    const double *recv = halo_exchange(P, nc);
+    for (size_t k = 0; k < P->nrecv; ++k)
+        for (int c = 0; c < nc; ++c) a[P->rslot[k] * (size_t)nc + c] = recv[k * (size_t)nc + c];
+    P->st.halo_s += MPI_Wtime() - t0;
 }
 
 static int cmp_id(const void *a, const void *b) {
@@ -385,7 +428,7 @@ static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
     P->st.owned_max = (size_t)omax;
     P->st.halo = P->nrecv;
     P->st.searches++;
-    P->st.comm_s += MPI_Wtime() - t0;
+    P->st.redist_s += MPI_Wtime() - t0;
     return RY_OK;
 }
 
@@ -393,32 +436,16 @@ static ry_status par_halo_update(ry_sim *sim, ry_error *err) {
     (void)err;
     par *P = get(sim);
     ry_particles *ps = &sim->ps;
-    const int nf = P->nf, size = P->size;
+    const int nf = P->nf;
     const double t0 = MPI_Wtime();
     double *send = sbuf(P, P->nsend * (size_t)nf);
     for (size_t k = 0; k < P->nsend; ++k)
         for (int q = 0; q < nf; ++q) send[k * (size_t)nf + q] = ps->f[P->fid[q]][P->sidx[k]];
-    double *recv = rbuf(P, P->nrecv * (size_t)nf);
-    int nreq = 0;
-    size_t off = 0;
-    for (int r = 0; r < size; ++r) {
-        if (P->rcount[r] > 0)
-            MPI_Irecv(recv + off * (size_t)nf, P->rcount[r] * nf, MPI_DOUBLE, r, 7, P->comm,
-                      &P->req[nreq++]);
-        off += (size_t)P->rcount[r];
-    }
-    off = 0;
-    for (int r = 0; r < size; ++r) {
-        if (P->scount[r] > 0)
-            MPI_Isend(send + off * (size_t)nf, P->scount[r] * nf, MPI_DOUBLE, r, 7, P->comm,
-                      &P->req[nreq++]);
-        off += (size_t)P->scount[r];
-    }
-    MPI_Waitall(nreq, P->req, MPI_STATUSES_IGNORE);
+    const double *recv = halo_exchange(P, nf);
     for (size_t k = 0; k < P->nrecv; ++k)
         for (int q = 0; q < nf; ++q) ps->f[P->fid[q]][P->rslot[k]] = recv[k * (size_t)nf + q];
     P->st.halo_updates++;
-    P->st.comm_s += MPI_Wtime() - t0;
+    P->st.halo_s += MPI_Wtime() - t0;
     return RY_OK;
 }
 
@@ -456,7 +483,7 @@ static ry_status par_verdict(const ry_sim *sim, size_t bad, size_t fluid, size_t
     long loc[3] = {(long)bad, (long)fluid, (long)outside}, glob[3];
     MPI_Allreduce(loc, glob, 3, MPI_LONG, MPI_SUM, P->comm);
     if (glob[0] == 0 && glob[2] == 0) {
-        P->st.comm_s += MPI_Wtime() - t0;
+        P->st.reduce_s += MPI_Wtime() - t0;
         return RY_OK;
     }
     /* Something to report: the tallies again, over owned particles only. */
@@ -482,7 +509,7 @@ static ry_status par_verdict(const ry_sim *sim, size_t bad, size_t fluid, size_t
     if (P->rank == who)
         st = ry_check_verdict_here(sim, (size_t)loc[0], (size_t)glob[1], (size_t)glob[2], err);
     st = share_error(P, who, st, err);
-    P->st.comm_s += MPI_Wtime() - t0;
+    P->st.reduce_s += MPI_Wtime() - t0;
     return st;
 }
 
@@ -583,8 +610,9 @@ static ry_status par_checkpoint(ry_sim *sim, char *path, size_t path_size, ry_er
     return st;
 }
 
-static const ry_par_ops ops = {par_all,      par_max,     par_redistribute, par_halo_update,
-                               par_permuted, par_verdict, par_output,       par_checkpoint};
+static const ry_par_ops ops = {par_all,          par_max,         par_sum,      par_sync,
+                               par_redistribute, par_halo_update, par_permuted, par_verdict,
+                               par_output,       par_checkpoint};
 
 /* Puts a set in id order and checks that its ids are 0..n-1. */
 static ry_status ids_in_order(par *P, ry_particles *ps, ry_error *err) {
@@ -606,10 +634,10 @@ ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalan
     P->imbalance = imbalance;
     ry_status st = RY_OK;
     if (P->size > 1) {
-        if (strcmp(sim->scheme->name, "wcsph") != 0)
+        if (strcmp(sim->scheme->name, "wcsph") != 0 && strcmp(sim->scheme->name, "iisph") != 0)
             st = ry_error_set(err, RY_ERR_INPUT,
-                              "scheme '%s' runs on one rank only so far (distributed: wcsph); "
-                              "run it with ryushi",
+                              "scheme '%s' runs on one rank only so far (distributed: wcsph, "
+                              "iisph); run it with ryushi",
                               sim->scheme->name);
         else if (sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2])
             st = ry_error_set(err, RY_ERR_INPUT,
@@ -659,6 +687,7 @@ ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalan
 void ry_mpi_get_stats(const ry_sim *sim, ry_mpi_stats *s) {
     memset(s, 0, sizeof *s);
     if (sim->par_state) *s = get(sim)->st;
+    s->comm_s = s->redist_s + s->halo_s + s->reduce_s;
 }
 
 void ry_mpi_detach(ry_sim *sim) {

@@ -20,7 +20,11 @@
 
 /* Statistics of a rank's part of a run. */
 typedef struct ry_mpi_stats {
-    double comm_s;      /* seconds in exchanges and reductions */
+    double comm_s;      /* seconds in exchanges and reductions, in all: */
+    double redist_s;    /* redistributions at searches (with the bisections) */
+    double halo_s;      /* halo updates between searches */
+    double reduce_s;    /* reductions (time step, guard, stop, search decision; they also
+                           wait for the slowest rank) */
     long searches;      /* redistributions */
     long rebalances;    /* fresh bisections */
     long halo_updates;  /* halo exchanges between searches */

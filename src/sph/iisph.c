@@ -168,6 +168,7 @@ static void densities_and_forces(ry_sim *sim, iisph *s) {
         delta[i] = sw;
         if (MOBILE[kind[i]]) ps->f[RY_F_RHO][i] = m[i] * sw;
     }
+    if (sim->par) sim->par->sync(sim, delta, 1); /* halo copies: their owners' values */
     const double *v[3];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
     const double cvis = 2.0 * (dim + 2);
@@ -309,14 +310,24 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
     /* Warm start. */
     for (size_t i = 0; i < n; ++i)
         if (kind[i] == RY_KIND_FLUID) p[i] *= s->warm;
-    size_t nfluid = 0;
-    for (size_t i = 0; i < n; ++i) nfluid += kind[i] == RY_KIND_FLUID;
+    double nfluid = 0;
+    for (size_t i = 0; i < n; ++i) nfluid += kind[i] == RY_KIND_FLUID && !ry_sim_is_halo(sim, i);
+    /* A distributed run: a pass that reads its neighbours' results of the pass before gets
+     * the halo copies' values from their owners first; the error is summed over all ranks. */
+    if (sim->par) {
+        sim->par->sync(sim, s->dii, 3);
+        sim->par->sync(sim, s->aii, 1);
+        sim->par->sync(sim, s->dstar, 1);
+        nfluid = sim->par->sum(sim, nfluid);
+    }
     const double omega = s->omega;
     long it = 0;
     double avg = 0;
     while (it < s->max_iter) {
         wall_extrapolate(sim, s, p);
+        if (sim->par) sim->par->sync(sim, p, 1);
         pressure_sums(sim, s, p, dt2);
+        if (sim->par) sim->par->sync(sim, s->sum, 3);
         double esum = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : esum)
         for (size_t i = 0; i < n; ++i) {
@@ -350,11 +361,15 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
             pnew[i] = pn;
             /* Ihmsen's average density error: clamped (free-surface) particles count only when
              * compressed. */
-            esum += (p[i] > 0 || err > 0) ? err : 0.0;
+            esum += (p[i] > 0 || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
         }
         memcpy(p, pnew, n * sizeof *p);
+        if (sim->par) {
+            sim->par->sync(sim, p, 1);
+            esum = sim->par->sum(sim, esum);
+        }
         ++it;
-        avg = nfluid ? esum / ((double)nfluid * d0) : 0.0;
+        avg = nfluid > 0 ? esum / (nfluid * d0) : 0.0;
         if (it >= s->min_iter && fabs(avg) <= s->tol) break;
     }
     s->error_last = avg;
@@ -393,6 +408,8 @@ static ry_status iisph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
 static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     iisph *s = state;
     ry_particles *ps = &sim->ps;
+    RY_CHECK(err, !(sim->par && s->colour_on), RY_ERR_INPUT,
+             "two-phase IISPH (colour field) runs on one rank only so far; run it with ryushi");
     RY_TRY(ry_sim_neighbors(sim, sim->kernel.radius, err)); /* may reorder particles */
     const size_t n = ps->n;
     const int dim = sim->dim;
@@ -411,6 +428,8 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         if (!MOBILE[ps->kind[i]]) continue;
         for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][i] += dt * s->acc[3 * i + d];
     }
+    if (sim->par)
+        for (int d = 0; d < dim; ++d) sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
     const long it = pressure_solve(sim, s, dt);
     s->iters_last = it;
     s->iters_total += it;
@@ -441,8 +460,13 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
             a2 += at * at;
             v2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
         }
+        if (ry_sim_is_halo(sim, i)) continue; /* its neighbours beyond the halo are missing */
         amax2 = fmax(amax2, a2);
         vmax2 = fmax(vmax2, v2);
+    }
+    if (sim->par) {
+        amax2 = sim->par->max(sim, amax2);
+        vmax2 = sim->par->max(sim, vmax2);
     }
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {

@@ -1,6 +1,6 @@
 #!/bin/sh
-# Distributed runs (ryushi-mpi, docs/parallel.md): the dam break and the lid-driven cavity on 1,
-# 2 and 4 ranks agree with the serial program (1 rank: series.csv byte for byte; more ranks:
+# Distributed runs (ryushi-mpi, docs/parallel.md): the dam break and the lid-driven cavity
+# (WCSPH) and the IISPH dam break on 1, 2 and 4 ranks agree with the serial program (1 rank: series.csv byte for byte; more ranks:
 # within a relative 1e-5, the sums being taken in another order); a run stopped at a checkpoint
 # and continued ends bitwise identical to an uninterrupted one on the same rank count, and
 # continues on another rank count; schemes that cannot run distributed yet are refused.
@@ -120,9 +120,27 @@ mpirun --oversubscribe -np 4 "$RYM" run "$DAM" $DSET $CK --restart "$T/part4" > 
     bad "4-rank restart of a 2-rank run failed: $(cat "$T/part4.log")"
 close "$T/full" "$T/part4" "front_x mass kinetic_energy max_speed" 1e-5 "2-rank run continued on 4 ranks"
 
-# 5. What cannot run distributed yet is refused by name.
-expect 2 "scheme 'iisph' runs on one rank only so far" \
-    mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/hydrostatic_iisph.yaml" -o "$T/iisph"
+# 5. IISPH dam break (Jacobi pressure solve with the halo synchronised between its passes and
+# the density error summed over the ranks) on 2 and 4 ranks.
+IIS="$SRC/cases/dam_break_mm_iisph.yaml"
+ISET="--set spacing=0.005715 --set time.end=0.15 --set time.output_interval=0.025"
+# shellcheck disable=SC2086
+"$RY" run "$IIS" -o "$T/iisph_serial" $ISET > "$T/iisph_serial.log" 2>&1 ||
+    bad "serial IISPH dam break failed: $(cat "$T/iisph_serial.log")"
+for np in 2 4; do
+    # shellcheck disable=SC2086
+    mrun $np iisph$np "$IIS" $ISET
+    [ "$rc" -eq 0 ] || bad "IISPH dam break on $np ranks exited $rc: $(cat "$T/iisph$np.log")"
+    close "$T/iisph_serial" "$T/iisph$np" \
+        "front_x mass kinetic_energy max_speed iisph_iterations iisph_iterations_mean" 1e-5 \
+        "IISPH dam break on $np ranks"
+done
+
+# 6. What cannot run distributed yet is refused by name.
+expect 2 "scheme 'mps' runs on one rank only so far" \
+    mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/mps_hydrostatic.yaml" -o "$T/mps"
+expect 2 "two-phase IISPH (colour field) runs on one rank only so far" \
+    mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/stacked_fluids.yaml" -o "$T/two"
 expect 2 "periodic domains run on one rank only so far" \
     mpirun --oversubscribe -np 2 "$RYM" run "$DAM" -o "$T/per" --set domain.periodic_x=true
 
