@@ -59,6 +59,9 @@ typedef struct mps {
     double *b, *xs;
     double *pd;       /* Dirichlet pressure of the surface particles (8 n: work) */
     int csf_pressure; /* CSF as the Laplace jump on the surface particles */
+    uint8_t *own;     /* distributed run: unknown k is this rank's own (not a halo copy) */
+    double *ptmp;     /* distributed run: a vector of unknowns spread over the particles */
+    const ry_sim *sim;
     size_t cap;
     int last_iters, last_viters;
     long total_iters, steps;
@@ -164,6 +167,8 @@ static void mps_free(void *state) {
     free(M->b);
     free(M->xs);
     free(M->pd);
+    free(M->own);
+    free(M->ptmp);
     free(M);
 }
 
@@ -180,9 +185,42 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (x) M->xs = x;
     double *pd = realloc(M->pd, 8 * c * sizeof *pd);
     if (pd) M->pd = pd;
-    RY_CHECK(err, u && r && b && x && pd, RY_ERR_NOMEM, "out of memory (MPS work arrays)");
+    uint8_t *o = realloc(M->own, c * sizeof *o);
+    if (o) M->own = o;
+    double *t = realloc(M->ptmp, c * sizeof *t);
+    if (t) M->ptmp = t;
+    RY_CHECK(err, u && r && b && x && pd && o && t, RY_ERR_NOMEM,
+             "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
+}
+
+/* A distributed run (sim->par): the linear systems span the ranks. Vectors of unknowns reach
+ * the halo copies through the particles. */
+static void dist_sync(void *ctx, double *v) {
+    mps *M = ctx;
+    ry_sim *sim = (ry_sim *)M->sim;
+    const size_t n = sim->ps.n;
+    for (size_t i = 0; i < n; ++i) M->ptmp[i] = M->unk[i] >= 0 ? v[M->unk[i]] : 0.0;
+    sim->par->sync(sim, M->ptmp, 1);
+    for (size_t i = 0; i < n; ++i)
+        if (M->unk[i] >= 0 && ry_sim_is_halo(sim, i)) v[M->unk[i]] = M->ptmp[i];
+}
+
+static double dist_sum(void *ctx, double v) {
+    mps *M = ctx;
+    ry_sim *sim = (ry_sim *)M->sim;
+    return sim->par->sum(sim, v);
+}
+
+/* The distribution of the current unknowns (NULL in a serial run). */
+static const ry_csr_dist *dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d) {
+    if (!sim->par) return NULL;
+    M->sim = sim;
+    for (size_t i = 0; i < sim->ps.n; ++i)
+        if (M->unk[i] >= 0) M->own[M->unk[i]] = !ry_sim_is_halo(sim, i);
+    *d = (ry_csr_dist){M->own, dist_sync, dist_sum, M};
+    return d;
 }
 
 /* Separation x_j - x_i (minimum image) and its square length. */
@@ -360,7 +398,9 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
         }
         int it;
         double res;
-        RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->vtol, (int)M->max_iter, &it, &res, err));
+        ry_csr_dist dd;
+        RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->vtol, (int)M->max_iter, &it, &res,
+                          dist_of(sim, M, &dd), err));
         M->last_viters += it;
         for (size_t i = 0; i < n; ++i)
             if (M->unk[i] >= 0) vs[i] = M->xs[M->unk[i]];
@@ -459,7 +499,9 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     }
     int it;
     double res;
-    RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->tol, (int)M->max_iter, &it, &res, err));
+    ry_csr_dist dd;
+    RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->tol, (int)M->max_iter, &it, &res, dist_of(sim, M, &dd),
+                      err));
     M->last_iters = it;
     M->total_iters += it;
     double *p = ps->f[RY_F_P];
@@ -468,7 +510,9 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         if (M->clamp && v < 0) v = 0;
         p[i] = v;
     }
+    if (sim->par) sim->par->sync(sim, p, 1);
     if (M->wall_extrapolate) extrapolate_walls(sim, M);
+    if (sim->par && M->wall_extrapolate) sim->par->sync(sim, p, 1);
     return RY_OK;
 }
 
@@ -562,6 +606,9 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     mps *M = state;
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
+    RY_CHECK(err, !(sim->par && M->st.model == RY_ST_CSF), RY_ERR_INPUT,
+             "CSF surface tension runs on one rank only so far; run it with ryushi (the "
+             "potential model runs distributed)");
     /* Explicit part at x^n: gravity, surface tension, viscosity. */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
@@ -589,6 +636,11 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     number_density(sim, M);
     RY_TRY(pressure(sim, M, dt, err));
     correct(sim, M, dt);
+    if (sim->par && M->coll_r > 0) /* the collisions read the corrected neighbours */
+        for (int d = 0; d < dim; ++d) {
+            sim->par->sync(sim, ps->f[RY_F_X + d], 1);
+            sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
+        }
     collisions(sim, M, dt);
     M->steps++;
     return RY_OK;
@@ -601,7 +653,7 @@ static ry_status mps_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     const double l0 = sim->dx;
     double v2 = 0, rho_min = INFINITY, nu_max = 0;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || ry_sim_is_halo(sim, i)) continue;
         double s = 0;
         for (int d = 0; d < sim->dim; ++d) s += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
         v2 = fmax(v2, s);

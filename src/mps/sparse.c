@@ -70,18 +70,28 @@ static double dot(const double *x, const double *y, size_t n) {
     return s;
 }
 
+/* The dot product of a distributed system: over the owned unknowns, summed over processes. */
+static double ddot(const ry_csr_dist *d, const double *x, const double *y, size_t n) {
+    if (!d) return dot(x, y, n);
+    double s = 0;
+    for (size_t i = 0; i < n; ++i) s += d->owned[i] ? x[i] * y[i] : 0.0;
+    return d->sum(d->ctx, s);
+}
+
 ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_iter, int *iters,
-                     double *resid, ry_error *err) {
+                     double *resid, const ry_csr_dist *dist, ry_error *err) {
     const size_t n = a->n;
     double *r = a->work, *z = r + n, *p = z + n, *q = p + n;
     *iters = 0;
     *resid = 0;
-    if (n == 0) return RY_OK;
-    const double bnorm = sqrt(dot(b, b, n));
+    /* (a distributed system goes on with no local unknowns: the others' sums need this one) */
+    if (n == 0 && !dist) return RY_OK;
+    const double bnorm = sqrt(ddot(dist, b, b, n));
     if (bnorm == 0) {
         for (size_t i = 0; i < n; ++i) x[i] = 0;
         return RY_OK;
     }
+    if (dist) dist->sync(dist->ctx, x);
     ry_csr_mul(a, x, q);
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (size_t i = 0; i < n; ++i) {
@@ -89,11 +99,12 @@ ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_
         z[i] = r[i] / a->diag[i];
         p[i] = z[i];
     }
-    double rz = dot(r, z, n), rn = sqrt(dot(r, r, n));
+    double rz = ddot(dist, r, z, n), rn = sqrt(ddot(dist, r, r, n));
     int k = 0;
     while (rn > tol * bnorm && k < max_iter) {
+        if (dist) dist->sync(dist->ctx, p);
         ry_csr_mul(a, p, q);
-        const double pq = dot(p, q, n);
+        const double pq = ddot(dist, p, q, n);
         RY_CHECK(err, pq > 0 && isfinite(pq), RY_ERR_UNSTABLE,
                  "conjugate gradients broke down after %d iterations (p.Ap = %g: the matrix is "
                  "not positive definite)",
@@ -105,12 +116,12 @@ ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_
             r[i] -= alpha * q[i];
             z[i] = r[i] / a->diag[i];
         }
-        const double rz1 = dot(r, z, n);
+        const double rz1 = ddot(dist, r, z, n);
         const double beta = rz1 / rz;
         rz = rz1;
 #pragma omp parallel for schedule(static) if (n > 4096)
         for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
-        rn = sqrt(dot(r, r, n));
+        rn = sqrt(ddot(dist, r, r, n));
         ++k;
     }
     *iters = k;

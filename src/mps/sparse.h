@@ -26,11 +26,24 @@ void ry_csr_free(ry_csr *a);
 /* y = A x (OpenMP over rows). */
 void ry_csr_mul(const ry_csr *a, const double *x, double *y);
 
+/* A system shared by several processes (a distributed run): each holds rows for its own
+ * unknowns (owned[k] non-zero) and copies of its neighbours' (halo) unknowns, whose rows it
+ * does not use. sync fills a vector's halo entries from their owners; sum adds a number over
+ * the processes. */
+typedef struct ry_csr_dist {
+    const uint8_t *owned;
+    void (*sync)(void *ctx, double *v);
+    double (*sum)(void *ctx, double v);
+    void *ctx;
+} ry_csr_dist;
+
 /* Solves A x = b for a symmetric positive definite A by conjugate gradients with the Jacobi
  * (diagonal) preconditioner, from the initial x, until |b - A x| <= tol |b| (2-norms) or
  * max_iter iterations. *iters receives the iterations, *resid the final relative residual.
- * RY_ERR_UNSTABLE when it does not converge or breaks down. */
+ * RY_ERR_UNSTABLE when it does not converge or breaks down. With dist (NULL: one process),
+ * the system is distributed: norms and dot products over all processes' owned unknowns, and
+ * the direction's halo entries synchronised before each product with A. */
 ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_iter, int *iters,
-                     double *resid, ry_error *err);
+                     double *resid, const ry_csr_dist *dist, ry_error *err);
 
 #endif

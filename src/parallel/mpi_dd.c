@@ -634,10 +634,11 @@ ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalan
     P->imbalance = imbalance;
     ry_status st = RY_OK;
     if (P->size > 1) {
-        if (strcmp(sim->scheme->name, "wcsph") != 0 && strcmp(sim->scheme->name, "iisph") != 0)
+        if (strcmp(sim->scheme->name, "wcsph") != 0 && strcmp(sim->scheme->name, "iisph") != 0 &&
+            strcmp(sim->scheme->name, "mps") != 0)
             st = ry_error_set(err, RY_ERR_INPUT,
                               "scheme '%s' runs on one rank only so far (distributed: wcsph, "
-                              "iisph); run it with ryushi",
+                              "iisph, mps); run it with ryushi",
                               sim->scheme->name);
         else if (sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2])
             st = ry_error_set(err, RY_ERR_INPUT,

@@ -146,7 +146,7 @@ static void test_pcg_poisson_1d(void **state) {
     a.row[n] = p;
     int it;
     double res;
-    assert_int_equal(ry_csr_pcg(&a, b, x, 1e-12, 1000, &it, &res, &err), RY_OK);
+    assert_int_equal(ry_csr_pcg(&a, b, x, 1e-12, 1000, &it, &res, NULL, &err), RY_OK);
     for (size_t i = 0; i < n; ++i) {
         const double xi = (i + 1) * h;
         assert_rel(x[i], 0.5 * xi * (1 - xi), 1e-8, "CG solution");
@@ -154,7 +154,7 @@ static void test_pcg_poisson_1d(void **state) {
     assert_true(it <= n + 1 && res <= 1e-12);
     /* Too few iterations: an error naming the residual. */
     for (size_t i = 0; i < n; ++i) x[i] = 0;
-    assert_int_equal(ry_csr_pcg(&a, b, x, 1e-12, 5, &it, &res, &err), RY_ERR_UNSTABLE);
+    assert_int_equal(ry_csr_pcg(&a, b, x, 1e-12, 5, &it, &res, NULL, &err), RY_ERR_UNSTABLE);
     assert_non_null(strstr(err.msg, "did not converge"));
     ry_csr_free(&a);
 }
