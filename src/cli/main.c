@@ -308,12 +308,13 @@ static int cmd_run_mpi(int argc, char **argv) {
         const double psteps = (double)view.ps.n * (double)stats.steps;
         printf("summary status=%s steps=%ld particles=%zu t=%.6g wall_s=%.3f "
                "particle_steps_per_s=%.4g ranks=%d threads=%d comm_s=%.3f comm_share=%.3f "
-               "redist_s=%.3f halo_s=%.3f reduce_s=%.3f halo=%ld owned_max=%zu rebalances=%ld "
+               "redist_s=%.3f halo_s=%.3f reduce_s=%.3f halo=%ld halo_fields=%d owned_max=%zu "
+               "rebalances=%ld "
                "outputs=%d output=%s\n",
                st == RY_OK ? "ok" : ry_status_name(st), stats.steps, view.ps.n, sim.t, wall_max,
                psteps / (wall_max > 0 ? wall_max : 1e-9), size, omp_get_max_threads(), comm_max,
                wall_max > 0 ? comm_max / wall_max : 0.0, part_max[0], part_max[1], part_max[2],
-               halo_tot, ms.owned_max, ms.rebalances, sim.output_index, view.out_dir);
+               halo_tot, ms.fields, ms.owned_max, ms.rebalances, sim.output_index, view.out_dir);
     }
 out:
     ry_mpi_detach(&sim);

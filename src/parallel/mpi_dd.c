@@ -689,6 +689,7 @@ void ry_mpi_get_stats(const ry_sim *sim, ry_mpi_stats *s) {
     memset(s, 0, sizeof *s);
     if (sim->par_state) *s = get(sim)->st;
     s->comm_s = s->redist_s + s->halo_s + s->reduce_s;
+    if (sim->par_state) s->fields = get(sim)->nf;
 }
 
 void ry_mpi_detach(ry_sim *sim) {

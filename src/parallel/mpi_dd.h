@@ -31,6 +31,7 @@ typedef struct ry_mpi_stats {
     size_t owned, halo; /* particles at the last search */
     size_t owned_max;   /* largest owned count over the ranks at the last search */
     size_t migrated;    /* particles sent to other ranks, in all */
+    int fields;         /* values per particle in a halo update */
 } ry_mpi_stats;
 
 /* Distributes a simulation set up (and possibly restored) identically on every rank of comm;
