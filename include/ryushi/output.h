@@ -5,6 +5,8 @@
 #ifndef RYUSHI_OUTPUT_H
 #define RYUSHI_OUTPUT_H
 
+#include <stdint.h>
+
 #include "ryushi/particles.h"
 #include "ryushi/status.h"
 
@@ -12,6 +14,15 @@
  * mass, kind, material, id and every field flagged RY_FIELD_OUTPUT. */
 ry_status ry_vtk_write_particles(const char *path, const ry_particles *ps, double time,
                                  ry_error *err);
+
+/* The same for the particles whose skip[i] is zero: one piece of a parallel dataset. */
+ry_status ry_vtk_write_piece(const char *path, const ry_particles *ps, const uint8_t *skip,
+                             double time, ry_error *err);
+
+/* Writes a parallel dataset (.pvtp) of npieces pieces DIR/piece_RRRR.vtp (DIR relative to the
+ * .pvtp), with the arrays ry_vtk_write_particles writes for ps. */
+ry_status ry_pvtp_write(const char *path, const ry_particles *ps, int npieces, const char *dir,
+                        double time, ry_error *err);
 
 /* Writes a .pvd collection of n datasets (file names relative to the .pvd) with times. */
 ry_status ry_pvd_write(const char *path, int n, char *const *files, const double *times,

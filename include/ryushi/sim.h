@@ -210,6 +210,9 @@ struct ry_sim {
     char *case_name; /* base name of the case file, without extension */
     double output_interval;
     int write_vtk;
+    int write_pieces; /* distributed runs: each rank writes its piece of the VTK output */
+    int vtk_pieces;   /* set by the parallel layer: this output's pieces are written; the VTK
+                         file is a .pvtp of that many pieces */
     int output_index;
     double next_output;
     void *writer; /* output state (pvd entries, series buffer) */

@@ -273,6 +273,8 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     int yes = 1;
     RY_TRY(ry_case_string(c, "output.folder", def_out, &folder, err));
     RY_TRY(ry_case_bool(c, "output.vtk", &yes, &sim->write_vtk, err));
+    int no = 0;
+    RY_TRY(ry_case_bool(c, "output.pieces", &no, &sim->write_pieces, err));
     sim->out_dir = ry_strdup(out_dir ? out_dir : folder);
     RY_CHECK(err, sim->out_dir && sim->case_name, RY_ERR_NOMEM, "out of memory");
 

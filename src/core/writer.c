@@ -70,9 +70,16 @@ ry_status ry_sim_write_output(ry_sim *sim, ry_error *err) {
     RY_CHECK(err, w != NULL, RY_ERR_INTERNAL, "output written before the writer was opened");
     char path[4096], name[512];
     if (sim->write_vtk) {
-        snprintf(name, sizeof name, "%s_%05d.vtp", sim->case_name, sim->output_index);
+        snprintf(name, sizeof name, "%s_%05d.%s", sim->case_name, sim->output_index,
+                 sim->vtk_pieces ? "pvtp" : "vtp");
         snprintf(path, sizeof path, "%s/%s", sim->out_dir, name);
-        RY_TRY(ry_vtk_write_particles(path, &sim->ps, sim->t, err));
+        if (sim->vtk_pieces) { /* the ranks wrote their pieces into CASE_NNNNN/ */
+            char dir[600];
+            snprintf(dir, sizeof dir, "%s_%05d", sim->case_name, sim->output_index);
+            RY_TRY(ry_pvtp_write(path, &sim->ps, sim->vtk_pieces, dir, sim->t, err));
+        } else {
+            RY_TRY(ry_vtk_write_particles(path, &sim->ps, sim->t, err));
+        }
         if (w->n == w->cap) {
             int cap = w->cap ? 2 * w->cap : 64;
             char **f = realloc(w->files, (size_t)cap * sizeof *f);

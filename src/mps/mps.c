@@ -606,9 +606,6 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     mps *M = state;
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
-    RY_CHECK(err, !(sim->par && M->st.model == RY_ST_CSF), RY_ERR_INPUT,
-             "CSF surface tension runs on one rank only so far; run it with ryushi (the "
-             "potential model runs distributed)");
     /* Explicit part at x^n: gravity, surface tension, viscosity. */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));

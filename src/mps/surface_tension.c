@@ -145,6 +145,10 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         if (sqrt(gn) <= gmin) continue;
         for (int d = 0; d < dim; ++d) gs[3 * i + d] = g[d];
     }
+    /* A distributed run: each pass reads its neighbours' results of the pass before, which
+     * the halo copies take from their owners. */
+    ry_sim *ms = (ry_sim *)sim;
+    if (sim->par) sim->par->sync(ms, gs, 3);
     /* RY_ST_CURV_SURFACE: the normal from g smoothed over the neighbours (weights w, the
      * particle itself 1). On a staircase (a lattice circle) or a disordered surface the single
      * g_i tilt back and forth with the particle's position, and a protruding particle, with the
@@ -171,6 +175,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         if (!(gn > 0)) continue;
         for (int d = 0; d < 3; ++d) nrm[3 * i + d] = d < dim ? -g[d] / gn : 0.0;
     }
+    if (sim->par) sim->par->sync(ms, nrm, 3);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         raw[i] = 0;
@@ -211,7 +216,8 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         const double kmax = (dim - 1) / (2.0 * st->l0);
         raw[i] = ok ? fmax(fmin(div, kmax), -kmax) : 0.0;
     }
-    /* Averaged over the neighbours that have a normal (weights w, the particle itself 1). */
+    if (sim->par) sim->par->sync(ms, raw, 1);
+        /* Averaged over the neighbours that have a normal (weights w, the particle itself 1). */
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         kappa[i] = 0;
@@ -231,6 +237,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         }
         kappa[i] = ks / ws;
     }
+    if (sim->par) sim->par->sync(ms, kappa, 1);
 }
 
 ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],

@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "core/guard_check.h"
+#include "ryushi/atomic_file.h"
+#include "ryushi/output.h"
 
 /* Bisection steps per cut: the cut is placed to 2^-40 of the node's extent. */
 #define ORB_ITERATIONS 40
@@ -572,9 +574,27 @@ static void gather(par *P, ry_sim *sim) {
     }
 }
 
+/* output.pieces: each rank writes its own particles as OUT/CASE_NNNNN/piece_RRRR.vtp. */
+static ry_status write_pieces(par *P, ry_sim *sim, ry_error *err) {
+    char dir[4400], path[4500];
+    snprintf(dir, sizeof dir, "%s/%s_%05d", sim->out_dir, sim->case_name, sim->output_index);
+    ry_status st = ry_mkdir_p(dir, err);
+    if (st == RY_OK) {
+        snprintf(path, sizeof path, "%s/piece_%04d.vtp", dir, P->rank);
+        st = ry_vtk_write_piece(path, &sim->ps, sim->halo, sim->t, err);
+    }
+    /* The lowest rank that failed reports for all. */
+    int mine = st != RY_OK ? P->rank : P->size, who;
+    MPI_Allreduce(&mine, &who, 1, MPI_INT, MPI_MIN, P->comm);
+    return who < P->size ? share_error(P, who, st, err) : RY_OK;
+}
+
 static ry_status par_output(ry_sim *sim, ry_error *err) {
     par *P = get(sim);
+    const int pieces = sim->write_vtk && sim->write_pieces;
+    if (pieces) RY_TRY(write_pieces(P, sim, err));
     gather(P, sim);
+    if (P->rank == 0) P->view->vtk_pieces = pieces ? P->size : 0;
     ry_status st = RY_OK;
     if (P->rank == 0) {
         ry_sim *v = P->view;

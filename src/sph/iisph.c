@@ -408,8 +408,6 @@ static ry_status iisph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
 static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     iisph *s = state;
     ry_particles *ps = &sim->ps;
-    RY_CHECK(err, !(sim->par && s->colour_on), RY_ERR_INPUT,
-             "two-phase IISPH (colour field) runs on one rank only so far; run it with ryushi");
     RY_TRY(ry_sim_neighbors(sim, sim->kernel.radius, err)); /* may reorder particles */
     const size_t n = ps->n;
     const int dim = sim->dim;

@@ -62,7 +62,8 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         }
         cs[i] = sn / sd;
     }
-    /* Normal n = grad c'. */
+    if (sim->par) sim->par->sync(sim, cs, 1); /* halo copies: their owners' values */
+        /* Normal n = grad c'. */
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         double g[3] = {0, 0, 0};
@@ -76,6 +77,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
             }
         for (int d = 0; d < 3; ++d) nrm[3 * i + d] = g[d];
     }
+    if (sim->par) sim->par->sync(sim, nrm, 3);
     /* Curvature and force. */
     const double sigma = cf->sigma;
 #pragma omp parallel for schedule(dynamic, 64)

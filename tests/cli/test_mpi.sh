@@ -1,7 +1,7 @@
 #!/bin/sh
 # Distributed runs (ryushi-mpi, docs/parallel.md): the dam break and the lid-driven cavity
-# (WCSPH), the IISPH and MPS dam breaks and an MPS drop with surface tension on 1, 2 and 4
-# ranks agree with the serial program (1 rank: series.csv byte for byte; more ranks:
+# (WCSPH), the IISPH and MPS dam breaks, MPS drops with surface tension (potential model and
+# CSF) and two-phase IISPH on 1, 2 and 4 ranks agree with the serial program (1 rank: series.csv byte for byte; more ranks:
 # within a relative 1e-5, the sums being taken in another order); a run stopped at a checkpoint
 # and continued ends bitwise identical to an uninterrupted one on the same rank count, and
 # continues on another rank count; schemes that cannot run distributed yet are refused.
@@ -74,6 +74,22 @@ for np in 2 4; do
     [ "$n" -eq 11 ] && grep -c "DataSet" "$T/dam$np/dam_break_seed.pvd" | grep -q "^11$" && ok ||
         bad "dam break on $np ranks: $n VTK files for 11 output times"
 done
+
+# 2b. Parallel output (output.pieces): each rank writes its piece of every output time, rank 0
+# a .pvtp naming them; the pieces hold every particle once.
+# shellcheck disable=SC2086
+mrun 2 pieces "$DAM" $DSET --set output.pieces=true
+[ "$rc" -eq 0 ] || bad "dam break with pieces exited $rc: $(cat "$T/pieces.log")"
+n=$(grep -c 'file="dam_break_seed_[0-9]*\.pvtp"' "$T/pieces/dam_break_seed.pvd")
+[ "$n" -eq 11 ] && ok || bad "pieces: the .pvd lists $n .pvtp files for 11 output times"
+grep -c '<Piece Source="dam_break_seed_00010/piece_000[01].vtp"/>' \
+    "$T/pieces/dam_break_seed_00010.pvtp" | grep -q '^2$' && ok ||
+    bad "pieces: dam_break_seed_00010.pvtp does not name its 2 pieces"
+pts=$(cat "$T/pieces/dam_break_seed_00010"/piece_*.vtp | grep -a -o 'NumberOfPoints="[0-9]*"' |
+    tr -dc '0-9\n' | awk '{ s += $1 } END { print s }')
+[ "$pts" = 1340 ] && ok || bad "pieces: $pts points in the pieces of the last output, expected 1340"
+cmp -s "$T/pieces/series.csv" "$T/dam2/series.csv" && ok ||
+    bad "pieces: series.csv differs from the run without pieces"
 
 # 3. Cavity (density summation, transport velocity, moving lid; profiles averaged from 0.5 s)
 # on 2 and 4 ranks.
@@ -163,14 +179,32 @@ mrun 2 drop2 "$DROP" $PSET
 close "$T/drop_serial" "$T/drop2" "width_x kinetic_energy max_speed drop_pressure ppe_iterations" \
     1e-5 "MPS drop on 2 ranks"
 
-# 7. What cannot run distributed yet is refused by name.
+# 7. Passes that read their neighbours' results of the pass before, with the halo synchronised
+# between them: CSF curvature (colour gradient, normal, divergence, average) in the MPS drop,
+# and the colour field of two-phase IISPH (colour, normal, curvature) in two stacked fluids.
+CSET="$PSET --set surface_tension.model=csf"
+# shellcheck disable=SC2086
+"$RY" run "$DROP" -o "$T/csf_serial" $CSET > "$T/csf_serial.log" 2>&1 ||
+    bad "serial CSF drop failed: $(cat "$T/csf_serial.log")"
+# shellcheck disable=SC2086
+mrun 2 csf2 "$DROP" $CSET
+[ "$rc" -eq 0 ] || bad "CSF drop on 2 ranks exited $rc: $(cat "$T/csf2.log")"
+close "$T/csf_serial" "$T/csf2" "width_x kinetic_energy max_speed drop_pressure ppe_iterations" \
+    1e-5 "MPS drop with CSF on 2 ranks"
+TWO="$SRC/cases/stacked_fluids.yaml"
+TSET="--set time.end=0.1 --set time.output_interval=0.025"
+# shellcheck disable=SC2086
+"$RY" run "$TWO" -o "$T/two_serial" $TSET > "$T/two_serial.log" 2>&1 ||
+    bad "serial stacked fluids failed: $(cat "$T/two_serial.log")"
+# shellcheck disable=SC2086
+mrun 2 two2 "$TWO" $TSET
+[ "$rc" -eq 0 ] || bad "stacked fluids on 2 ranks exited $rc: $(cat "$T/two2.log")"
+close "$T/two_serial" "$T/two2" "kinetic_energy max_speed mass iisph_iterations" 1e-5 \
+    "two-phase IISPH on 2 ranks"
+
+# 8. What cannot run distributed yet is refused by name.
 expect 2 "scheme 'solid' runs on one rank only so far" \
     mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/cantilever.yaml" -o "$T/solid"
-# shellcheck disable=SC2086
-expect 2 "CSF surface tension runs on one rank only so far" \
-    mpirun --oversubscribe -np 2 "$RYM" run "$DROP" -o "$T/csf" $PSET --set surface_tension.model=csf
-expect 2 "two-phase IISPH (colour field) runs on one rank only so far" \
-    mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/stacked_fluids.yaml" -o "$T/two"
 expect 2 "periodic domains run on one rank only so far" \
     mpirun --oversubscribe -np 2 "$RYM" run "$DAM" -o "$T/per" --set domain.periodic_x=true
 
