@@ -113,6 +113,9 @@ size_t ry_particles_bytes_per_particle(const ry_particles *ps);
  * mass_scale (one factor per particle, may be NULL), of the scaled masses. */
 double ry_particles_kinetic_energy(const ry_particles *ps, int dim, ry_kind kind,
                                    const double *mass_scale);
+/* The same without the particles whose skip[i] is non-zero (skip may be NULL). */
+double ry_particles_kinetic_energy_of(const ry_particles *ps, int dim, ry_kind kind,
+                                      const double *mass_scale, const uint8_t *skip);
 /* Coordinates as the neighbour search takes them (x[d] for d < dim, NULL beyond). */
 static inline void ry_particles_coords(const ry_particles *ps, const double *x[3]) {
     x[0] = ps->f[RY_F_X];

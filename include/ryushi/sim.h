@@ -87,6 +87,9 @@ typedef struct ry_par_ops {
     /* The guard's verdict from this rank's tallies (see ry_check_verdict). */
     ry_status (*verdict)(const ry_sim *sim, size_t bad, size_t fluid, size_t outside,
                          ry_error *err);
+    /* The open boundaries' conversions after a step (ry_open_update) on each rank's own
+     * particles, with the ids of the particles created made unique over the ranks. */
+    ry_status (*open_update)(ry_sim *sim, ry_error *err);
     /* Output (VTK, .pvd entry, series.csv row) and checkpoints of the whole set. */
     ry_status (*output)(ry_sim *sim, ry_error *err);
     ry_status (*checkpoint)(ry_sim *sim, char *path, size_t path_size, ry_error *err);
@@ -234,6 +237,8 @@ struct ry_sim {
     const ry_par_ops *par;
     void *par_state;
     const uint8_t *halo; /* halo[i]: particle i is a halo copy (see ry_par_ops) */
+    int dd_x[3];         /* fields of the coordinates the decomposition follows: the
+                            positions, or a scheme's reference positions */
 };
 
 /* Whether particle i is a halo copy of another rank's particle (never in a serial run). */

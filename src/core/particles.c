@@ -213,9 +213,14 @@ size_t ry_particles_bytes_per_particle(const ry_particles *ps) {
 
 double ry_particles_kinetic_energy(const ry_particles *ps, int dim, ry_kind kind,
                                    const double *mass_scale) {
+    return ry_particles_kinetic_energy_of(ps, dim, kind, mass_scale, NULL);
+}
+
+double ry_particles_kinetic_energy_of(const ry_particles *ps, int dim, ry_kind kind,
+                                      const double *mass_scale, const uint8_t *skip) {
     double e = 0;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != kind) continue;
+        if (ps->kind[i] != kind || (skip && skip[i])) continue;
         double v2 = 0;
         for (int d = 0; d < dim; ++d) v2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
         e += 0.5 * ps->f[RY_F_MASS][i] * (mass_scale ? mass_scale[i] : 1.0) * v2;

@@ -134,6 +134,11 @@ static size_t exchange(par *P, const double *send, const int *cnt, int *rcnt) {
 
 /* ---- orthogonal recursive bisection ---------------------------------------------------- */
 
+/* The coordinates the decomposition follows (sim->dd_x). */
+static void dd_coords(const ry_sim *sim, const double *x[3]) {
+    for (int d = 0; d < 3; ++d) x[d] = d < sim->dim ? sim->ps.f[sim->dd_x[d]] : NULL;
+}
+
 static int owner(const par *P, const double *x[3], size_t i) {
     int n = 0;
     while (P->tree[n].axis >= 0) {
@@ -163,7 +168,7 @@ static void orb_build(par *P, const ry_sim *sim, int round_robin) {
     const int dim = sim->dim, size = P->size;
     const size_t n = ps->n;
     const double *x[3];
-    ry_particles_coords(ps, x);
+    dd_coords(sim, x);
     P->nnodes = 1;
     orb_node *root = &P->tree[0];
     memset(root, 0, sizeof *root);
@@ -347,6 +352,12 @@ static void sort_by_id(par *P, ry_particles *ps) {
     free(order);
 }
 
+static void drop_halo(par *P, ry_sim *sim) {
+    if (P->nrecv) ry_particles_remove(&sim->ps, P->halo);
+    P->nrecv = P->nsend = 0;
+    sim->halo = NULL;
+}
+
 static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
     (void)err;
     par *P = get(sim);
@@ -354,9 +365,7 @@ static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
     const int dim = sim->dim, size = P->size, rs = rec_size(P);
     const double t0 = MPI_Wtime();
     /* 1. The old halo goes. */
-    if (P->nrecv) ry_particles_remove(ps, P->halo);
-    P->nrecv = P->nsend = 0;
-    sim->halo = NULL;
+    drop_halo(P, sim);
     /* 2. A fresh bisection when asked for or when the load is uneven. */
     long mine = (long)ps->n, most, all;
     MPI_Allreduce(&mine, &most, 1, MPI_LONG, MPI_MAX, P->comm);
@@ -364,7 +373,7 @@ static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
     if (P->canonical || (double)most > P->imbalance * (double)all / size) orb_build(P, sim, 0);
     /* 3. Particles move to the ranks that own their positions. */
     const double *x[3];
-    ry_particles_coords(ps, x);
+    dd_coords(sim, x);
     size_t n = ps->n;
     int *dest = xrealloc(P, NULL, n * sizeof(int));
     int *cnt = xrealloc(P, NULL, 2 * (size_t)size * sizeof(int)), *rcnt = cnt + size;
@@ -396,7 +405,7 @@ static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
         P->canonical = 0;
     }
     /* 5. The halo: each particle within 2 * reach of another rank's region goes there. */
-    ry_particles_coords(ps, x);
+    dd_coords(sim, x);
     n = ps->n;
     const double w2 = 4 * reach * reach;
     memset(cnt, 0, (size_t)size * sizeof(int));
@@ -465,6 +474,26 @@ static void par_permuted(ry_sim *sim, const uint32_t *order) {
     for (size_t k = 0; k < P->nrecv; ++k) P->rslot[k] = inv[P->rslot[k]];
     free(inv);
     free(h);
+}
+
+/* Open boundaries: each rank converts, creates and removes its own particles (the halo is
+ * dropped first, so the next search rebuilds it); the particles created get ids after all
+ * those of the ranks before. */
+static ry_status par_open_update(ry_sim *sim, ry_error *err) {
+    par *P = get(sim);
+    drop_halo(P, sim);
+    const int64_t first = sim->ps.next_id;
+    if (ry_open_update(sim, err) != RY_OK) die(P, err->msg);
+    const double t0 = MPI_Wtime();
+    long made = (long)(sim->ps.next_id - first), before = 0, all;
+    MPI_Exscan(&made, &before, 1, MPI_LONG, MPI_SUM, P->comm);
+    MPI_Allreduce(&made, &all, 1, MPI_LONG, MPI_SUM, P->comm);
+    if (P->rank == 0) before = 0; /* MPI_Exscan leaves rank 0's undefined */
+    for (size_t i = 0; i < sim->ps.n; ++i)
+        if (sim->ps.id[i] >= first) sim->ps.id[i] += before;
+    sim->ps.next_id = first + all;
+    P->st.reduce_s += MPI_Wtime() - t0;
+    return RY_OK;
 }
 
 /* Sends rank root's error (status and message) to all ranks. */
@@ -540,16 +569,31 @@ static void gather(par *P, ry_sim *sim) {
         }
     double *recv = P->rank == 0 ? rbuf(P, total) : NULL;
     MPI_Gatherv(send, cnt, MPI_DOUBLE, recv, rc, rd, MPI_DOUBLE, 0, P->comm);
+    /* The open boundaries' counters: each rank counts its own conversions. */
+    for (int q = 0; q < sim->nopen; ++q) {
+        long c = sim->open[q].count, sum = 0;
+        MPI_Reduce(&c, &sum, 1, MPI_LONG, MPI_SUM, 0, P->comm);
+        if (P->rank == 0) P->view->open[q].count = sum;
+    }
     if (P->rank != 0) return;
     ry_sim *v = P->view;
+    /* The whole set in id order (open boundaries change it: the view follows). */
     const size_t m = total / (size_t)rs;
-    if (m != v->ps.n) die(P, "the ranks hold a different number of particles than the case");
+    int64_t *key = xrealloc(P, NULL, 2 * (m ? m : 1) * sizeof(int64_t));
     for (size_t q = 0; q < m; ++q) {
-        const double *r = recv + q * (size_t)rs;
-        const int64_t id = (int64_t)r[0];
-        if (id < 0 || (size_t)id >= m) die(P, "particle id out of range");
-        unpack(P, &v->ps, (size_t)id, r);
+        key[2 * q] = (int64_t)recv[q * (size_t)rs];
+        key[2 * q + 1] = (int64_t)q;
     }
+    qsort(key, m, 2 * sizeof(int64_t), cmp_id);
+    if (m > v->ps.n) {
+        size_t first;
+        ry_error e = {0};
+        if (ry_particles_add(&v->ps, m - v->ps.n, &first, &e) != RY_OK) die(P, e.msg);
+    }
+    v->ps.n = m;
+    for (size_t q = 0; q < m; ++q) unpack(P, &v->ps, q, recv + (size_t)key[2 * q + 1] * (size_t)rs);
+    v->ps.next_id = sim->ps.next_id;
+    free(key);
     free(rc);
     /* The clock and the scheme's scalars (the same on every rank). */
     v->t = sim->t;
@@ -598,13 +642,15 @@ static ry_status par_output(ry_sim *sim, ry_error *err) {
     ry_status st = RY_OK;
     if (P->rank == 0) {
         ry_sim *v = P->view;
-        /* The cells some measurements search (those of the ranks' last search). */
-        if (sim->nl_radius > 0) {
-            const double *x[3];
-            ry_particles_coords(&v->ps, x);
-            st = ry_cells_build(&v->cells, &v->box, sim->nl_radius * (1 + sim->nl_skin), v->ps.n, x,
-                                err);
-        }
+        /* The cells and the list some measurements search, over the whole set (the ranks'
+         * search radius, or the kernel's for a scheme that does not search). */
+        const double r = sim->nl_radius > 0 ? sim->nl_radius : sim->kernel.radius;
+        const double *x[3];
+        ry_particles_coords(&v->ps, x);
+        st = ry_cells_build(&v->cells, &v->box, r * (1 + sim->nl_skin), v->ps.n, x, err);
+        if (st == RY_OK)
+            st = ry_nlist_build_cells(&v->nl, &v->cells, &v->box, r * (1 + sim->nl_skin), v->ps.n,
+                                      x, err);
         if (st == RY_OK) st = ry_sim_write_output(v, err);
     }
     st = share_error(P, 0, st, err);
@@ -632,14 +678,13 @@ static ry_status par_checkpoint(ry_sim *sim, char *path, size_t path_size, ry_er
 
 static const ry_par_ops ops = {par_all,          par_max,         par_sum,      par_sync,
                                par_redistribute, par_halo_update, par_permuted, par_verdict,
-                               par_output,       par_checkpoint};
+                               par_open_update,  par_output,      par_checkpoint};
 
-/* Puts a set in id order and checks that its ids are 0..n-1. */
+/* Puts a set in id order and checks that no id is repeated. */
 static ry_status ids_in_order(par *P, ry_particles *ps, ry_error *err) {
     sort_by_id(P, ps);
-    for (size_t i = 0; i < ps->n; ++i)
-        RY_CHECK(err, ps->id[i] == (int64_t)i, RY_ERR_INPUT,
-                 "distributed runs need particle ids 0..n-1 (particle %zu has id %lld)", i,
+    for (size_t i = 1; i < ps->n; ++i)
+        RY_CHECK(err, ps->id[i] > ps->id[i - 1], RY_ERR_INPUT, "particle id %lld is repeated",
                  (long long)ps->id[i]);
     return RY_OK;
 }
@@ -654,18 +699,10 @@ ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalan
     P->imbalance = imbalance;
     ry_status st = RY_OK;
     if (P->size > 1) {
-        if (strcmp(sim->scheme->name, "wcsph") != 0 && strcmp(sim->scheme->name, "iisph") != 0 &&
-            strcmp(sim->scheme->name, "mps") != 0)
-            st = ry_error_set(err, RY_ERR_INPUT,
-                              "scheme '%s' runs on one rank only so far (distributed: wcsph, "
-                              "iisph, mps); run it with ryushi",
-                              sim->scheme->name);
-        else if (sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2])
+        if (sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2])
             st = ry_error_set(err, RY_ERR_INPUT,
                               "periodic domains run on one rank only so far; run with ryushi");
-        else if (sim->nopen > 0)
-            st = ry_error_set(err, RY_ERR_INPUT,
-                              "open boundaries run on one rank only so far; run with ryushi");
+
     }
     if (st != RY_OK) {
         free(P);
@@ -690,12 +727,16 @@ ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalan
      * then keeps its own. */
     orb_build(P, sim, 1);
     const double *x[3];
-    ry_particles_coords(&sim->ps, x);
+    dd_coords(sim, x);
     uint8_t *gone = malloc(sim->ps.n ? sim->ps.n : 1);
     if (!gone) die(P, "out of memory");
     for (size_t i = 0; i < sim->ps.n; ++i) gone[i] = owner(P, x, i) != P->rank;
     ry_particles_remove(&sim->ps, gone);
     free(gone);
+    /* The open boundaries' counters are summed over the ranks: rank 0 keeps the whole set's
+     * (after a restart), the others start from none. */
+    if (P->rank != 0)
+        for (int q = 0; q < sim->nopen; ++q) sim->open[q].count = 0;
     /* The first search re-partitions canonically, as after a checkpoint. */
     P->canonical = 1;
     sim->nl_radius = -1;

@@ -328,6 +328,10 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
                                   &s->f_psi, err));
     for (int d = 0; d < sim->dim; ++d)
         memcpy(ps->f[s->f_X[d]], ps->f[RY_F_X + d], ps->n * sizeof(double));
+    /* Distributed: the total-Lagrangian form's neighbours are those of the reference
+     * configuration, and so are its subdomains and halo. */
+    if (!s->ul)
+        for (int d = 0; d < sim->dim; ++d) sim->dd_x[d] = s->f_X[d];
     for (size_t i = 0; i < ps->n; ++i)
         if (ps->kind[i] == RY_KIND_WALL)
             for (int d = 0; d < sim->dim; ++d) ps->f[RY_F_VX + d][i] = 0;
@@ -375,6 +379,8 @@ size_t ry_solid_reverse_pair(const ry_nlist *nl, size_t i, size_t j) {
 /* Neighbour list, kernel gradients and corrections in the reference configuration. */
 static ry_status build_reference(ry_sim *sim, solid *s, ry_error *err) {
     ry_particles *ps = &sim->ps;
+    /* Distributed: the subdomains and their halo, once (the reference configuration stays). */
+    if (sim->par) RY_TRY(sim->par->redistribute(sim, sim->kernel.radius, err));
     const size_t n = ps->n;
     const int dim = sim->dim;
     const ry_kernel *k = &sim->kernel;
@@ -643,19 +649,30 @@ void ry_solid_accelerate(ry_sim *sim, solid *s, size_t i, const double *f, int d
     s->r2[i] = r2;
 }
 
+/* Kinetic energy of the solid (with the relaxation's mass scaling), over all ranks. */
+static double owned_kinetic_energy(ry_sim *sim, const double *mscale) {
+    const double e =
+        ry_particles_kinetic_energy_of(&sim->ps, sim->dim, RY_KIND_SOLID, mscale, sim->halo);
+    return sim->par ? sim->par->sum(sim, e) : e;
+}
+
 void ry_solid_residual_update(ry_sim *sim, solid *s) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    /* summed in particle order (the same for any thread count) */
+    /* summed in particle order (the same for any thread count); distributed, over the ranks */
     double net = 0, ext = 0;
     for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_SOLID) continue;
+        if (ps->kind[i] != RY_KIND_SOLID || ry_sim_is_halo(sim, i)) continue;
         net += s->r2[i];
         for (int a = 0; a < dim; ++a) {
             double fe = ps->f[s->f_fext[a]][i] + ps->f[RY_F_MASS][i] * sim->gravity[a];
             ext += fe * fe;
         }
+    }
+    if (sim->par) {
+        net = sim->par->sum(sim, net);
+        ext = sim->par->sum(sim, ext);
     }
     s->residual = ext > 0 ? sqrt(net / ext) : sqrt(net);
 }
@@ -681,6 +698,7 @@ static ry_status evaluate(ry_sim *sim, solid *s, double dt, ry_error *err) {
         RY_TRY(ry_solid_ul_evaluate(sim, s, dt, err));
     } else {
         if (!s->built) RY_TRY(build_reference(sim, s, err));
+        if (sim->par) RY_TRY(sim->par->halo_update(sim, err)); /* the halo's positions */
         stresses(sim, s);
         forces(sim, s);
     }
@@ -721,7 +739,7 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         }
     }
     if (s->relax == RELAX_KINETIC) {
-        double ke = ry_particles_kinetic_energy(ps, dim, RY_KIND_SOLID, s->mscale);
+        double ke = owned_kinetic_energy(sim, s->mscale);
         if (ke < s->ke_prev) { /* past a maximum of the kinetic energy: stop everything */
             for (size_t i = 0; i < n; ++i)
                 for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][i] = 0;
@@ -836,7 +854,8 @@ static ry_status probe_min_spacing(const ry_sim *sim, double *v, ry_error *err) 
     const solid *s = solid_state(sim);
     *v = NAN;
     if (!s) return RY_OK;
-    const ry_nlist *nl = s->ul ? &sim->nl : &s->nl;
+    /* (the current list where the reference one is not built: a distributed run's output) */
+    const ry_nlist *nl = s->ul || !s->nl.offset ? &sim->nl : &s->nl;
     const ry_particles *ps = &sim->ps;
     if (!nl->offset || nl->n != ps->n) return RY_OK;
     double m2 = INFINITY;

@@ -1,10 +1,11 @@
 #!/bin/sh
 # Distributed runs (ryushi-mpi, docs/parallel.md): the dam break and the lid-driven cavity
 # (WCSPH), the IISPH and MPS dam breaks, MPS drops with surface tension (potential model and
-# CSF) and two-phase IISPH on 1, 2 and 4 ranks agree with the serial program (1 rank: series.csv byte for byte; more ranks:
-# within a relative 1e-5, the sums being taken in another order); a run stopped at a checkpoint
+# CSF), two-phase IISPH and elastic solids on 1, 2 and 4 ranks agree with the serial program
+# (1 rank: series.csv byte for byte; more ranks: within a relative 1e-5, the sums being taken
+# in another order); parallel VTK output holds every particle once; a run stopped at a checkpoint
 # and continued ends bitwise identical to an uninterrupted one on the same rank count, and
-# continues on another rank count; schemes that cannot run distributed yet are refused.
+# continues on another rank count; what cannot run distributed yet is refused.
 # Skipped (exit 77) where ryushi-mpi or mpirun is absent.
 # usage: test_mpi.sh RYUSHI SOURCE_DIR
 set -u
@@ -202,9 +203,39 @@ mrun 2 two2 "$TWO" $TSET
 close "$T/two_serial" "$T/two2" "kinetic_energy max_speed mass iisph_iterations" 1e-5 \
     "two-phase IISPH on 2 ranks"
 
-# 8. What cannot run distributed yet is refused by name.
-expect 2 "scheme 'solid' runs on one rank only so far" \
-    mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/cantilever.yaml" -o "$T/solid"
+# 8. Elastic solids: the total-Lagrangian plate (subdomains and halo of the reference
+# configuration, fixed for the run) and the updated-Lagrangian plate on 2 ranks; the
+# cantilever's kinetic damping (kinetic energy summed over the ranks) for 3000 steps; the
+# total-Lagrangian plate stopped at a checkpoint and continued, bitwise.
+for c in oscillating_plate_tl oscillating_plate; do
+    SSET="--set time.end=0.01 --set time.output_interval=0.002 --set checkpoint.every_steps=1000"
+    # shellcheck disable=SC2086
+    "$RY" run "$SRC/cases/$c.yaml" -o "$T/${c}_serial" $SSET > "$T/${c}_serial.log" 2>&1 ||
+        bad "serial $c failed: $(cat "$T/${c}_serial.log")"
+    # shellcheck disable=SC2086
+    mrun 2 "${c}2" "$SRC/cases/$c.yaml" $SSET
+    [ "$rc" -eq 0 ] || bad "$c on 2 ranks exited $rc: $(cat "$T/${c}2.log")"
+    close "$T/${c}_serial" "$T/${c}2" "tip_deflection solid_kinetic_energy strain_energy min_spacing" \
+        1e-5 "$c on 2 ranks"
+done
+# shellcheck disable=SC2086
+mrun 2 plate_part "$SRC/cases/oscillating_plate_tl.yaml" $SSET --set time.max_steps=2000
+# shellcheck disable=SC2086
+mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/oscillating_plate_tl.yaml" $SSET \
+    --restart "$T/plate_part" > "$T/plate_part2.log" 2>&1 ||
+    bad "solid restart failed: $(cat "$T/plate_part2.log")"
+cmp -s "$T/oscillating_plate_tl2/series.csv" "$T/plate_part/series.csv" && ok ||
+    bad "total-Lagrangian plate restarted at step 2000: series.csv differs"
+BEAM="$SRC/cases/cantilever.yaml"
+# shellcheck disable=SC2086
+"$RY" run "$BEAM" -o "$T/beam_serial" --set time.max_steps=3000 > "$T/beam_serial.log" 2>&1 ||
+    bad "serial cantilever failed: $(cat "$T/beam_serial.log")"
+mrun 2 beam2 "$BEAM" --set time.max_steps=3000
+[ "$rc" -eq 0 ] || bad "cantilever on 2 ranks exited $rc: $(cat "$T/beam2.log")"
+close "$T/beam_serial" "$T/beam2" "tip_deflection solid_kinetic_energy strain_energy residual" 1e-5 \
+    "cantilever (kinetic damping) on 2 ranks"
+
+# 9. What cannot run distributed yet is refused by name.
 expect 2 "periodic domains run on one rank only so far" \
     mpirun --oversubscribe -np 2 "$RYM" run "$DAM" -o "$T/per" --set domain.periodic_x=true
 
