@@ -98,7 +98,8 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         sim->t += dt;
         sim->step++;
         if (sim->nopen > 0) sim->checked = 0; /* the particle set changes */
-        st = ry_open_update(sim, err);
+        st =
+            sim->par && sim->nopen > 0 ? sim->par->open_update(sim, err) : ry_open_update(sim, err);
         if (st != RY_OK) goto done;
         psteps += (double)sim->ps.n;
         st = sim->checked

@@ -676,8 +676,8 @@ static ry_status par_checkpoint(ry_sim *sim, char *path, size_t path_size, ry_er
     return st;
 }
 
-static const ry_par_ops ops = {par_all,          par_max,         par_sum,      par_sync,
-                               par_redistribute, par_halo_update, par_permuted, par_verdict,
+static const ry_par_ops ops = {par_all,          par_max,         par_sum,       par_sync,
+                               par_redistribute, par_halo_update, par_permuted,  par_verdict,
                                par_open_update,  par_output,      par_checkpoint};
 
 /* Puts a set in id order and checks that no id is repeated. */
@@ -702,7 +702,6 @@ ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalan
         if (sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2])
             st = ry_error_set(err, RY_ERR_INPUT,
                               "periodic domains run on one rank only so far; run with ryushi");
-
     }
     if (st != RY_OK) {
         free(P);

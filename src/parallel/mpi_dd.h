@@ -36,9 +36,8 @@ typedef struct ry_mpi_stats {
 
 /* Distributes a simulation set up (and possibly restored) identically on every rank of comm;
  * on rank 0, view is a second copy of the same set-up with its output opened, through which
- * output and checkpoints are written (NULL on other ranks). Refuses what cannot run
- * distributed yet (on more than one rank: schemes other than wcsph, periodic boxes, open
- * boundaries). */
+ * output and checkpoints are written (NULL on other ranks). Refuses periodic domains on more
+ * than one rank. */
 ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalance, ry_error *err);
 void ry_mpi_detach(ry_sim *sim);
 void ry_mpi_get_stats(const ry_sim *sim, ry_mpi_stats *s);

@@ -1,7 +1,8 @@
 #!/bin/sh
 # Distributed runs (ryushi-mpi, docs/parallel.md): the dam break and the lid-driven cavity
 # (WCSPH), the IISPH and MPS dam breaks, MPS drops with surface tension (potential model and
-# CSF), two-phase IISPH and elastic solids on 1, 2 and 4 ranks agree with the serial program
+# CSF), two-phase IISPH, elastic solids and a channel with open boundaries on 1, 2 and 4 ranks
+# agree with the serial program
 # (1 rank: series.csv byte for byte; more ranks: within a relative 1e-5, the sums being taken
 # in another order); parallel VTK output holds every particle once; a run stopped at a checkpoint
 # and continued ends bitwise identical to an uninterrupted one on the same rank count, and
@@ -235,7 +236,35 @@ mrun 2 beam2 "$BEAM" --set time.max_steps=3000
 close "$T/beam_serial" "$T/beam2" "tip_deflection solid_kinetic_energy strain_energy residual" 1e-5 \
     "cantilever (kinetic damping) on 2 ranks"
 
-# 9. What cannot run distributed yet is refused by name.
+# 9. Open boundaries (each rank converts, creates and removes its own particles; the ids of the
+# particles created follow those of the ranks before): the inflow channel on 2 and 4 ranks, and
+# stopped at a checkpoint and continued on 2 ranks, bitwise.
+CH="$SRC/cases/channel_inflow.yaml"
+HSET="--set time.end=0.5 --set time.output_interval=0.1 --set checkpoint.every_steps=200"
+# shellcheck disable=SC2086
+"$RY" run "$CH" -o "$T/ch_serial" $HSET > "$T/ch_serial.log" 2>&1 ||
+    bad "serial channel failed: $(cat "$T/ch_serial.log")"
+for np in 2 4; do
+    # shellcheck disable=SC2086
+    mrun $np ch$np "$CH" $HSET
+    [ "$rc" -eq 0 ] || bad "channel on $np ranks exited $rc: $(cat "$T/ch$np.log")"
+    close "$T/ch_serial" "$T/ch$np" \
+        "fluid_particles inflow_volume outflow_volume mass kinetic_energy max_speed" 1e-5 \
+        "channel with inflow and outflow on $np ranks"
+done
+# shellcheck disable=SC2086
+mrun 2 ch_part "$CH" $HSET --set time.max_steps=400
+# shellcheck disable=SC2086
+mpirun --oversubscribe -np 2 "$RYM" run "$CH" $HSET --restart "$T/ch_part" > "$T/ch_part2.log" 2>&1 ||
+    bad "channel restart failed: $(cat "$T/ch_part2.log")"
+n=0
+for f in "$T/ch2"/*.vtp "$T/ch2"/*.pvd "$T/ch2"/*.csv; do
+    n=$((n + 1))
+    cmp -s "$f" "$T/ch_part/$(basename "$f")" || { bad "channel restart: $(basename "$f") differs"; n=-1000; }
+done
+[ "$n" -ge 8 ] && ok || bad "channel restart: only $n files compared"
+
+# 10. What cannot run distributed yet is refused by name.
 expect 2 "periodic domains run on one rank only so far" \
     mpirun --oversubscribe -np 2 "$RYM" run "$DAM" -o "$T/per" --set domain.periodic_x=true
 
