@@ -51,6 +51,31 @@ close() {
     fi
 }
 
+# agree NAME CASE COLUMNS RANKS ARGS...: the serial program and a run on each rank count of
+# RANKS ("2 4") with the case file and ARGS; their series agree in COLUMNS within 1e-5
+agree() {
+    a_name=$1; a_case=$2; a_cols=$3; a_ranks=$4; shift 4
+    "$RY" run "$a_case" -o "$T/${a_name}_serial" "$@" > "$T/${a_name}_serial.log" 2>&1 ||
+        bad "serial $a_name failed: $(cat "$T/${a_name}_serial.log")"
+    for a_np in $a_ranks; do
+        mrun "$a_np" "$a_name$a_np" "$a_case" "$@"
+        [ "$rc" -eq 0 ] || bad "$a_name on $a_np ranks exited $rc: $(cat "$T/$a_name$a_np.log")"
+        close "$T/${a_name}_serial" "$T/$a_name$a_np" "$a_cols" 1e-5 "$a_name on $a_np ranks"
+    done
+}
+
+# restarted A B MIN WHAT: every VTK file, .pvd and .csv of run A is byte for byte in B (at
+# least MIN files)
+restarted() {
+    r_n=0
+    for f in "$1"/*.vtp "$1"/*.pvd "$1"/*.csv; do
+        [ -f "$f" ] || continue
+        r_n=$((r_n + 1))
+        cmp -s "$f" "$2/$(basename "$f")" || { bad "$4: $(basename "$f") differs"; return; }
+    done
+    [ "$r_n" -ge "$3" ] && ok || bad "$4: only $r_n files compared"
+}
+
 DAM="$SRC/cases/dam_break_seed.yaml"
 DSET="--set spacing=0.0125 --set time.end=0.2 --set time.output_interval=0.02"
 # shellcheck disable=SC2086
@@ -98,13 +123,8 @@ cmp -s "$T/pieces/series.csv" "$T/dam2/series.csv" && ok ||
 CAV="$SRC/cases/cavity_re100.yaml"
 CSET="--set spacing=0.025 --set time.end=1.0 --set profiles[0].average_from=0.5 --set profiles[1].average_from=0.5"
 # shellcheck disable=SC2086
-"$RY" run "$CAV" -o "$T/cav_serial" $CSET > "$T/cav_serial.log" 2>&1 ||
-    bad "serial cavity failed: $(cat "$T/cav_serial.log")"
+agree cav "$CAV" "kinetic_energy max_speed mass" "2 4" $CSET
 for np in 2 4; do
-    # shellcheck disable=SC2086
-    mrun $np cav$np "$CAV" $CSET
-    [ "$rc" -eq 0 ] || bad "cavity on $np ranks exited $rc: $(cat "$T/cav$np.log")"
-    close "$T/cav_serial" "$T/cav$np" "kinetic_energy max_speed mass" 1e-5 "cavity on $np ranks"
     # the averaged centreline profile, column 4 (u), within 1e-6 m/s
     if paste -d, "$T/cav_serial/profile_u_vertical_centreline.csv" \
         "$T/cav$np/profile_u_vertical_centreline.csv" | awk -F, -v n=8 '
@@ -128,12 +148,7 @@ mpirun --oversubscribe -np 2 "$RYM" run "$DAM" $DSET $CK --restart "$T/part" > "
     bad "2-rank restart failed: $(cat "$T/part2.log")"
 grep -q "restarting from .*checkpoint_0000000600.ryc (step 600" "$T/part2.log" && ok ||
     bad "restart did not name its checkpoint: $(cat "$T/part2.log")"
-n=0
-for f in "$T/full"/*.vtp "$T/full"/*.pvd "$T/full"/*.csv; do
-    n=$((n + 1))
-    cmp -s "$f" "$T/part/$(basename "$f")" || { bad "2-rank restart: $(basename "$f") differs"; n=-1000; }
-done
-[ "$n" -ge 13 ] && ok || bad "2-rank restart: only $n files compared"
+restarted "$T/full" "$T/part" 13 "2-rank dam break restarted at step 600"
 # shellcheck disable=SC2086
 mpirun --oversubscribe -np 4 "$RYM" run "$DAM" $DSET $CK --restart "$T/part4" > "$T/part4.log" 2>&1 ||
     bad "4-rank restart of a 2-rank run failed: $(cat "$T/part4.log")"
@@ -141,100 +156,47 @@ close "$T/full" "$T/part4" "front_x mass kinetic_energy max_speed" 1e-5 "2-rank 
 
 # 5. IISPH dam break (Jacobi pressure solve with the halo synchronised between its passes and
 # the density error summed over the ranks) on 2 and 4 ranks.
-IIS="$SRC/cases/dam_break_mm_iisph.yaml"
-ISET="--set spacing=0.005715 --set time.end=0.15 --set time.output_interval=0.025"
 # shellcheck disable=SC2086
-"$RY" run "$IIS" -o "$T/iisph_serial" $ISET > "$T/iisph_serial.log" 2>&1 ||
-    bad "serial IISPH dam break failed: $(cat "$T/iisph_serial.log")"
-for np in 2 4; do
-    # shellcheck disable=SC2086
-    mrun $np iisph$np "$IIS" $ISET
-    [ "$rc" -eq 0 ] || bad "IISPH dam break on $np ranks exited $rc: $(cat "$T/iisph$np.log")"
-    close "$T/iisph_serial" "$T/iisph$np" \
-        "front_x mass kinetic_energy max_speed iisph_iterations iisph_iterations_mean" 1e-5 \
-        "IISPH dam break on $np ranks"
-done
+agree iisph "$SRC/cases/dam_break_mm_iisph.yaml" \
+    "front_x mass kinetic_energy max_speed iisph_iterations iisph_iterations_mean" "2 4" \
+    --set spacing=0.005715 --set time.end=0.15 --set time.output_interval=0.025
 
 # 6. MPS (conjugate gradients over the ranks: dot products summed, the direction's halo
 # entries synchronised before each product with the matrix): the dam break on 2 and 4 ranks,
 # the square drop with potential-model surface tension on 2.
-MPS="$SRC/cases/mps_dam_break_mm.yaml"
-MSET="--set time.end=0.06 --set time.output_interval=0.02"
+agree mps "$SRC/cases/mps_dam_break_mm.yaml" "front_x mass kinetic_energy ppe_iterations" "2 4" \
+    --set time.end=0.06 --set time.output_interval=0.02
 DROP="$SRC/cases/mps_droplet_square.yaml"
-PSET="--set time.end=0.002 --set time.output_interval=0.0005"
-# shellcheck disable=SC2086
-"$RY" run "$MPS" -o "$T/mps_serial" $MSET > "$T/mps_serial.log" 2>&1 ||
-    bad "serial MPS dam break failed: $(cat "$T/mps_serial.log")"
-# shellcheck disable=SC2086
-"$RY" run "$DROP" -o "$T/drop_serial" $PSET > "$T/drop_serial.log" 2>&1 ||
-    bad "serial MPS drop failed: $(cat "$T/drop_serial.log")"
-for np in 2 4; do
-    # shellcheck disable=SC2086
-    mrun $np mps$np "$MPS" $MSET
-    [ "$rc" -eq 0 ] || bad "MPS dam break on $np ranks exited $rc: $(cat "$T/mps$np.log")"
-    close "$T/mps_serial" "$T/mps$np" "front_x mass kinetic_energy ppe_iterations" 1e-5 \
-        "MPS dam break on $np ranks"
-done
-# shellcheck disable=SC2086
-mrun 2 drop2 "$DROP" $PSET
-[ "$rc" -eq 0 ] || bad "MPS drop on 2 ranks exited $rc: $(cat "$T/drop2.log")"
-close "$T/drop_serial" "$T/drop2" "width_x kinetic_energy max_speed drop_pressure ppe_iterations" \
-    1e-5 "MPS drop on 2 ranks"
+DCOLS="width_x kinetic_energy max_speed drop_pressure ppe_iterations"
+agree drop "$DROP" "$DCOLS" 2 --set time.end=0.002 --set time.output_interval=0.0005
 
 # 7. Passes that read their neighbours' results of the pass before, with the halo synchronised
 # between them: CSF curvature (colour gradient, normal, divergence, average) in the MPS drop,
 # and the colour field of two-phase IISPH (colour, normal, curvature) in two stacked fluids.
-CSET="$PSET --set surface_tension.model=csf"
-# shellcheck disable=SC2086
-"$RY" run "$DROP" -o "$T/csf_serial" $CSET > "$T/csf_serial.log" 2>&1 ||
-    bad "serial CSF drop failed: $(cat "$T/csf_serial.log")"
-# shellcheck disable=SC2086
-mrun 2 csf2 "$DROP" $CSET
-[ "$rc" -eq 0 ] || bad "CSF drop on 2 ranks exited $rc: $(cat "$T/csf2.log")"
-close "$T/csf_serial" "$T/csf2" "width_x kinetic_energy max_speed drop_pressure ppe_iterations" \
-    1e-5 "MPS drop with CSF on 2 ranks"
-TWO="$SRC/cases/stacked_fluids.yaml"
-TSET="--set time.end=0.1 --set time.output_interval=0.025"
-# shellcheck disable=SC2086
-"$RY" run "$TWO" -o "$T/two_serial" $TSET > "$T/two_serial.log" 2>&1 ||
-    bad "serial stacked fluids failed: $(cat "$T/two_serial.log")"
-# shellcheck disable=SC2086
-mrun 2 two2 "$TWO" $TSET
-[ "$rc" -eq 0 ] || bad "stacked fluids on 2 ranks exited $rc: $(cat "$T/two2.log")"
-close "$T/two_serial" "$T/two2" "kinetic_energy max_speed mass iisph_iterations" 1e-5 \
-    "two-phase IISPH on 2 ranks"
+agree csf "$DROP" "$DCOLS" 2 --set time.end=0.002 --set time.output_interval=0.0005 \
+    --set surface_tension.model=csf
+agree two "$SRC/cases/stacked_fluids.yaml" "kinetic_energy max_speed mass iisph_iterations" 2 \
+    --set time.end=0.1 --set time.output_interval=0.025
 
 # 8. Elastic solids: the total-Lagrangian plate (subdomains and halo of the reference
 # configuration, fixed for the run) and the updated-Lagrangian plate on 2 ranks; the
 # cantilever's kinetic damping (kinetic energy summed over the ranks) for 3000 steps; the
 # total-Lagrangian plate stopped at a checkpoint and continued, bitwise.
-for c in oscillating_plate_tl oscillating_plate; do
-    SSET="--set time.end=0.01 --set time.output_interval=0.002 --set checkpoint.every_steps=1000"
-    # shellcheck disable=SC2086
-    "$RY" run "$SRC/cases/$c.yaml" -o "$T/${c}_serial" $SSET > "$T/${c}_serial.log" 2>&1 ||
-        bad "serial $c failed: $(cat "$T/${c}_serial.log")"
-    # shellcheck disable=SC2086
-    mrun 2 "${c}2" "$SRC/cases/$c.yaml" $SSET
-    [ "$rc" -eq 0 ] || bad "$c on 2 ranks exited $rc: $(cat "$T/${c}2.log")"
-    close "$T/${c}_serial" "$T/${c}2" "tip_deflection solid_kinetic_energy strain_energy min_spacing" \
-        1e-5 "$c on 2 ranks"
-done
+SSET="--set time.end=0.01 --set time.output_interval=0.002 --set checkpoint.every_steps=1000"
+SCOLS="tip_deflection solid_kinetic_energy strain_energy min_spacing"
+# shellcheck disable=SC2086
+agree plate_tl "$SRC/cases/oscillating_plate_tl.yaml" "$SCOLS" 2 $SSET
+# shellcheck disable=SC2086
+agree plate_ul "$SRC/cases/oscillating_plate.yaml" "$SCOLS" 2 $SSET
 # shellcheck disable=SC2086
 mrun 2 plate_part "$SRC/cases/oscillating_plate_tl.yaml" $SSET --set time.max_steps=2000
 # shellcheck disable=SC2086
 mpirun --oversubscribe -np 2 "$RYM" run "$SRC/cases/oscillating_plate_tl.yaml" $SSET \
     --restart "$T/plate_part" > "$T/plate_part2.log" 2>&1 ||
     bad "solid restart failed: $(cat "$T/plate_part2.log")"
-cmp -s "$T/oscillating_plate_tl2/series.csv" "$T/plate_part/series.csv" && ok ||
-    bad "total-Lagrangian plate restarted at step 2000: series.csv differs"
-BEAM="$SRC/cases/cantilever.yaml"
-# shellcheck disable=SC2086
-"$RY" run "$BEAM" -o "$T/beam_serial" --set time.max_steps=3000 > "$T/beam_serial.log" 2>&1 ||
-    bad "serial cantilever failed: $(cat "$T/beam_serial.log")"
-mrun 2 beam2 "$BEAM" --set time.max_steps=3000
-[ "$rc" -eq 0 ] || bad "cantilever on 2 ranks exited $rc: $(cat "$T/beam2.log")"
-close "$T/beam_serial" "$T/beam2" "tip_deflection solid_kinetic_energy strain_energy residual" 1e-5 \
-    "cantilever (kinetic damping) on 2 ranks"
+restarted "$T/plate_tl2" "$T/plate_part" 1 "total-Lagrangian plate restarted at step 2000"
+agree beam "$SRC/cases/cantilever.yaml" \
+    "tip_deflection solid_kinetic_energy strain_energy residual" 2 --set time.max_steps=3000
 
 # 9. Open boundaries (each rank converts, creates and removes its own particles; the ids of the
 # particles created follow those of the ranks before): the inflow channel on 2 and 4 ranks, and
@@ -242,27 +204,14 @@ close "$T/beam_serial" "$T/beam2" "tip_deflection solid_kinetic_energy strain_en
 CH="$SRC/cases/channel_inflow.yaml"
 HSET="--set time.end=0.5 --set time.output_interval=0.1 --set checkpoint.every_steps=200"
 # shellcheck disable=SC2086
-"$RY" run "$CH" -o "$T/ch_serial" $HSET > "$T/ch_serial.log" 2>&1 ||
-    bad "serial channel failed: $(cat "$T/ch_serial.log")"
-for np in 2 4; do
-    # shellcheck disable=SC2086
-    mrun $np ch$np "$CH" $HSET
-    [ "$rc" -eq 0 ] || bad "channel on $np ranks exited $rc: $(cat "$T/ch$np.log")"
-    close "$T/ch_serial" "$T/ch$np" \
-        "fluid_particles inflow_volume outflow_volume mass kinetic_energy max_speed" 1e-5 \
-        "channel with inflow and outflow on $np ranks"
-done
+agree ch "$CH" "fluid_particles inflow_volume outflow_volume mass kinetic_energy max_speed" \
+    "2 4" $HSET
 # shellcheck disable=SC2086
 mrun 2 ch_part "$CH" $HSET --set time.max_steps=400
 # shellcheck disable=SC2086
 mpirun --oversubscribe -np 2 "$RYM" run "$CH" $HSET --restart "$T/ch_part" > "$T/ch_part2.log" 2>&1 ||
     bad "channel restart failed: $(cat "$T/ch_part2.log")"
-n=0
-for f in "$T/ch2"/*.vtp "$T/ch2"/*.pvd "$T/ch2"/*.csv; do
-    n=$((n + 1))
-    cmp -s "$f" "$T/ch_part/$(basename "$f")" || { bad "channel restart: $(basename "$f") differs"; n=-1000; }
-done
-[ "$n" -ge 8 ] && ok || bad "channel restart: only $n files compared"
+restarted "$T/ch2" "$T/ch_part" 8 "channel restarted at step 400"
 
 # 10. What cannot run distributed yet is refused by name.
 expect 2 "periodic domains run on one rank only so far" \
