@@ -95,6 +95,13 @@ for np in 2 4; do
     mrun $np dam$np "$DAM" $DSET
     [ "$rc" -eq 0 ] || bad "dam break on $np ranks exited $rc: $(cat "$T/dam$np.log")"
     grep -q "ranks=$np " "$T/dam$np.log" && ok || bad "no $np-rank summary: $(cat "$T/dam$np.log")"
+    # re-balanced as the water moves: bisected afresh more than at the start, and the most
+    # loaded rank within 15 % of the mean at the last search
+    if grep '^summary' "$T/dam$np.log" | tr ' ' '\n' | awk -F= -v np="$np" '
+        $1 == "rebalances" { r = $2 } $1 == "owned_max" { m = $2 } $1 == "particles" { n = $2 }
+        END { exit !(r >= 3 && m <= 1.15 * n / np) }'; then ok; else
+        bad "dam break on $np ranks: not re-balanced: $(grep '^summary' "$T/dam$np.log")"
+    fi
     close "$T/dam_serial" "$T/dam$np" "front_x mass kinetic_energy max_speed outside in_wall" 1e-5 \
         "dam break on $np ranks"
     n=$(ls "$T/dam$np"/*.vtp | wc -l)
