@@ -159,6 +159,24 @@ static double dist2(const par *P, const double *x[3], int dim, size_t i, int r) 
     return s;
 }
 
+/* The other ranks whose regions lie within w of particle i, found by descending the bisection
+ * tree into the sides of each cut that w reaches (O(log P) per particle); returns how many. */
+static int near_ranks(const par *P, const double *x[3], int dim, size_t i, double w, int *out) {
+    int stack[128], sp = 0, k = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const orb_node *o = &P->tree[stack[--sp]];
+        if (o->axis < 0) {
+            if (o->r0 != P->rank && dist2(P, x, dim, i, o->r0) < w * w) out[k++] = o->r0;
+            continue;
+        }
+        const double xi = x[o->axis][i];
+        if (xi - w < o->cut && sp < 128) stack[sp++] = o->lo;
+        if (xi + w >= o->cut && sp < 128) stack[sp++] = o->hi;
+    }
+    return k;
+}
+
 /* Bisects the particles of all ranks (each counted once: with round_robin, every rank holds the
  * whole set and counts every size-th particle) into one region per rank, balanced by count.
  * Each cut is found by bisection on its coordinate with the global counts, so that the tree
@@ -407,18 +425,22 @@ static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
     /* 5. The halo: each particle within 2 * reach of another rank's region goes there. */
     dd_coords(sim, x);
     n = ps->n;
-    const double w2 = 4 * reach * reach;
+    const double w = 2 * reach;
+    int *near = xrealloc(P, NULL, (size_t)size * sizeof(int));
     memset(cnt, 0, (size_t)size * sizeof(int));
-    for (size_t i = 0; i < n; ++i)
-        for (int r = 0; r < size; ++r)
-            if (r != P->rank && dist2(P, x, dim, i, r) < w2) cnt[r]++;
+    for (size_t i = 0; i < n; ++i) {
+        const int k = near_ranks(P, x, dim, i, w, near);
+        for (int q = 0; q < k; ++q) cnt[near[q]]++;
+    }
     pos[0] = 0;
     for (int r = 0; r < size; ++r) pos[r + 1] = pos[r] + (size_t)cnt[r];
     P->nsend = pos[size];
     P->sidx = xrealloc(P, P->sidx, P->nsend * sizeof(size_t));
-    for (size_t i = 0; i < n; ++i)
-        for (int r = 0; r < size; ++r)
-            if (r != P->rank && dist2(P, x, dim, i, r) < w2) P->sidx[pos[r]++] = i;
+    for (size_t i = 0; i < n; ++i) {
+        const int k = near_ranks(P, x, dim, i, w, near);
+        for (int q = 0; q < k; ++q) P->sidx[pos[near[q]]++] = i;
+    }
+    free(near);
     send = sbuf(P, P->nsend * (size_t)rs);
     for (size_t k = 0; k < P->nsend; ++k) pack(P, ps, P->sidx[k], send + k * (size_t)rs);
     memcpy(P->scount, cnt, (size_t)size * sizeof(int));
