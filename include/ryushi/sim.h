@@ -151,6 +151,8 @@ typedef struct ry_ckpt_policy {
     int at_end;           /* one at the end of the run */
     double next_t;        /* next simulated time due */
     double last_wall;     /* wall time of the last one */
+    int scheduled;        /* the one being written is on the simulated schedule (interval,
+                             every_steps, the end), not by the wall clock or a signal */
 } ry_ckpt_policy;
 
 struct ry_sim {

@@ -292,6 +292,11 @@ static int cmd_run_mpi(int argc, char **argv) {
                           &stop_requested};
     ry_run_stats stats = {0};
     st = ry_sim_run(&sim, &hooks, &stats, &err);
+    /* Out of memory or a broken invariant strikes one rank: the others cannot be told. */
+    if (st == RY_ERR_NOMEM || st == RY_ERR_INTERNAL) {
+        fprintf(stderr, "ryushi-mpi: rank %d: ", rank);
+        MPI_Abort(MPI_COMM_WORLD, fail(&err));
+    }
     if (rank == 0 && pc.tty) fprintf(stderr, "\n");
     rc = st != RY_OK ? ry_status_exit_code(st) : 0;
     if (st != RY_OK && rank == 0) fail(&err);

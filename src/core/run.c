@@ -7,12 +7,13 @@
 #include "ryushi/sim.h"
 #include "core/guard_check.h"
 
-/* A checkpoint due after this step by the case's policy. */
+/* A checkpoint due after this step by the case's policy: 1 on the simulated schedule
+ * (interval, every_steps), 2 by the wall clock alone, 0 none. */
 static int checkpoint_due(ry_sim *sim, double eps) {
     const ry_ckpt_policy *k = &sim->ckpt;
     if (k->interval > 0 && sim->t >= k->next_t - eps) return 1;
     if (k->every_steps > 0 && sim->step % k->every_steps == 0) return 1;
-    return k->wall_interval > 0 && ry_wall_time() - k->last_wall >= k->wall_interval;
+    return k->wall_interval > 0 && ry_wall_time() - k->last_wall >= k->wall_interval ? 2 : 0;
 }
 
 /* On instability: the last good state goes to disk (VTK and checkpoint), named in the message. */
@@ -119,7 +120,12 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             if (st != RY_OK) goto done;
             while (sim->next_output <= sim->t + eps) sim->next_output += sim->output_interval;
         }
-        if (checkpoint_due(sim, eps)) {
+        int due = checkpoint_due(sim, eps);
+        /* The wall clock differs between ranks: they agree on the most pressing verdict. */
+        if (sim->par) due = (int)sim->par->max(sim, due == 1 ? 3.0 : due);
+        if (due == 3) due = 1;
+        if (due) {
+            sim->ckpt.scheduled = due == 1;
             while (sim->ckpt.next_t <= sim->t + eps) sim->ckpt.next_t += sim->ckpt.interval;
             st = ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, err);
             if (st != RY_OK) goto done;
@@ -138,6 +144,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
      * unless it was just written. */
     if (st == RY_ERR_INTERRUPTED || sim->ckpt.at_end) {
         ry_error e = {0};
+        sim->ckpt.scheduled = st != RY_ERR_INTERRUPTED; /* the end of the run is scheduled */
         ry_status cs = ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, &e);
         if (cs != RY_OK && st == RY_OK) {
             *err = e;

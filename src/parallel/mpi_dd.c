@@ -692,9 +692,13 @@ static ry_status par_checkpoint(ry_sim *sim, char *path, size_t path_size, ry_er
     MPI_Bcast(file, (int)sizeof file, MPI_CHAR, 0, P->comm);
     if (path) snprintf(path, path_size, "%s", file);
     sim->ckpt.last_wall = ry_wall_time();
-    /* What a restart from this checkpoint does: a fresh, canonical partition. */
-    P->canonical = 1;
-    sim->nl_radius = -1; /* the next step searches afresh, whatever the drift */
+    /* At a checkpoint of the simulated schedule: what a restart from it does, a fresh,
+     * canonical partition (so that the restart is bitwise the same run). Not at one of the
+     * wall clock's or a signal's, so that a run's results never depend on when those came. */
+    if (sim->ckpt.scheduled) {
+        P->canonical = 1;
+        sim->nl_radius = -1; /* the next step searches afresh, whatever the drift */
+    }
     return st;
 }
 
