@@ -241,6 +241,9 @@ struct ry_sim {
     const uint8_t *halo; /* halo[i]: particle i is a halo copy (see ry_par_ops) */
     int dd_x[3];         /* fields of the coordinates the decomposition follows: the
                             positions, or a scheme's reference positions */
+    int halo_depth;      /* search radii of halo (2, the default: a value a halo particle
+                            computes from its own neighbours is right where an owned particle
+                            reads it; 1 for a scheme that synchronises every such value) */
 };
 
 /* Whether particle i is a halo copy of another rank's particle (never in a serial run). */

@@ -250,7 +250,17 @@ static int cmd_run_mpi(int argc, char **argv) {
         return rc;
     }
     const char *imb = getenv("RY_MPI_IMBALANCE");
-    const double imbalance = imb && *imb ? atof(imb) : 1.1;
+    double imbalance = 1.1;
+    if (imb && *imb) {
+        char *end;
+        imbalance = strtod(imb, &end);
+        if (*end || !(imbalance >= 1.0) || !(imbalance < 1e6)) {
+            free(a.sets);
+            return rank == 0 ? bad_usage("RY_MPI_IMBALANCE: expected a number from 1 up, got '%s'",
+                                         imb)
+                             : 2;
+        }
+    }
     ry_error err = {0};
     ry_case *c = NULL, *cv = NULL;
     ry_sim sim, view;

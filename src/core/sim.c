@@ -259,6 +259,7 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(ry_case_int(c, "neighbors.reorder_every", &reorder, 0, 1000000, &reorder, err));
     sim->reorder_every = (int)reorder;
     for (int d = 0; d < 3; ++d) sim->dd_x[d] = RY_F_X + (d < sim->dim ? d : 0);
+    sim->halo_depth = 2;
     static const char *const xr[3] = {"xref_x", "xref_y", "xref_z"};
     for (int d = 0; d < 3; ++d) {
         int id;

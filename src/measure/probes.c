@@ -1,6 +1,7 @@
 /* Measured quantities: the columns of series.csv. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "ryushi/mps.h"
 #include "ryushi/sim.h"
@@ -188,38 +189,46 @@ static int near_port_axis(const ry_sim *sim, size_t i) {
 /* Wall wetted by the injected fluid: among the wall particles with a fluid particle within the
  * kernel support (the wetted wall, e.g. the retina), the fraction whose nearest fluid particle
  * is of the second material (the injected fluid, e.g. silicone oil). Wall particles of the
- * ports (near_port_axis) do not count. Uses the current neighbour list. */
+ * ports (near_port_axis) do not count. Searches cells of its own over the current positions
+ * (the run's neighbour list may be older than the particle set: open boundaries add and
+ * remove particles after a step). */
 static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *err) {
     RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
              "measurement 'oil_wall_contact' needs two materials (the second is the injected one)");
     const ry_particles *ps = &sim->ps;
-    if (!sim->nl.offset || sim->nl.n != ps->n) {
-        *v = NAN;
-        return RY_OK;
-    }
     const double rad2 = sim->kernel.radius * sim->kernel.radius;
+    ry_cell_list cl;
+    memset(&cl, 0, sizeof cl);
+    const double *x[3];
+    ry_particles_coords(ps, x);
+    RY_TRY(ry_cells_build(&cl, &sim->box, sim->kernel.radius, ps->n, x, err));
+    int per[3];
+    for (int d = 0; d < 3; ++d) per[d] = d < sim->dim && sim->box.periodic[d];
     size_t wet = 0, oil = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_WALL || near_port_axis(sim, i)) continue;
         double best = rad2;
         int mat = -1;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
-            if (ps->kind[j] != RY_KIND_FLUID) continue;
-            double r2 = 0;
-            for (int d = 0; d < sim->dim; ++d) {
-                const double dx = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
-                r2 += dx * dx;
+        size_t cells[27];
+        const int nc = ry_cells_neighbours(&cl, per, cl.cell_of[i], cells);
+        for (int c = 0; c < nc; ++c)
+            for (size_t q = cl.start[cells[c]]; q < cl.start[cells[c] + 1]; ++q) {
+                const uint32_t j = cl.order[q];
+                if (ps->kind[j] != RY_KIND_FLUID) continue;
+                double dx[3] = {0, 0, 0}, r2 = 0;
+                for (int d = 0; d < sim->dim; ++d) dx[d] = x[d][i] - x[d][j];
+                ry_box_min_image(&sim->box, dx);
+                for (int d = 0; d < sim->dim; ++d) r2 += dx[d] * dx[d];
+                if (r2 < best) {
+                    best = r2;
+                    mat = ps->material[j];
+                }
             }
-            if (r2 < best) {
-                best = r2;
-                mat = ps->material[j];
-            }
-        }
         if (mat < 0) continue;
         ++wet;
         oil += mat == 1;
     }
+    ry_cells_free(&cl);
     *v = wet ? (double)oil / (double)wet : 0.0;
     return RY_OK;
 }

@@ -425,7 +425,7 @@ static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
     /* 5. The halo: each particle within 2 * reach of another rank's region goes there. */
     dd_coords(sim, x);
     n = ps->n;
-    const double w = 2 * reach;
+    const double w = sim->halo_depth * reach;
     int *near = xrealloc(P, NULL, (size_t)size * sizeof(int));
     memset(cnt, 0, (size_t)size * sizeof(int));
     for (size_t i = 0; i < n; ++i) {

@@ -63,6 +63,9 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     iisph *s = calloc(1, sizeof *s);
     RY_CHECK(err, s != NULL, RY_ERR_NOMEM, "out of memory");
     *state = s;
+    /* Distributed: every pass that reads its neighbours' results of the pass before gets them
+     * synchronised, so a halo one search radius deep serves. */
+    sim->halo_depth = 1;
     /* Relaxation: 0.5 (Ihmsen et al. 2014) diverges in 3D with the Wendland C2 kernel at
      * h = 1.4 dx (about 130 neighbours; the 3D dam break blows up at the first steps), 0.35
      * converges; 0.3 is the 3D default. */
@@ -166,9 +169,10 @@ static void densities_and_forces(ry_sim *sim, iisph *s) {
         if (MOBILE[kind[i]])
             for (size_t q = off[i]; q < off[i + 1]; ++q) sw += cv[q * RY_PAIR_STRIDE + RY_PW_W];
         delta[i] = sw;
-        if (MOBILE[kind[i]]) ps->f[RY_F_RHO][i] = m[i] * sw;
     }
     if (sim->par) sim->par->sync(sim, delta, 1); /* halo copies: their owners' values */
+    for (size_t i = 0; i < n; ++i)
+        if (MOBILE[kind[i]]) ps->f[RY_F_RHO][i] = m[i] * delta[i];
     const double *v[3];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
     const double cvis = 2.0 * (dim + 2);

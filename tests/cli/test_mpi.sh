@@ -229,6 +229,10 @@ mpirun --oversubscribe -np 2 "$RYM" run "$CH" $HSET --restart "$T/ch_part" > "$T
 restarted "$T/ch2" "$T/ch_part" 8 "channel restarted at step 400"
 
 # 10. What cannot run distributed yet is refused by name.
+export RY_MPI_IMBALANCE=0.5
+expect 2 "RY_MPI_IMBALANCE: expected a number from 1 up, got '0.5'" \
+    mpirun --oversubscribe -np 2 "$RYM" run "$DAM" -o "$T/imb"
+unset RY_MPI_IMBALANCE
 expect 2 "periodic domains run on one rank only so far" \
     mpirun --oversubscribe -np 2 "$RYM" run "$DAM" -o "$T/per" --set domain.periodic_x=true
 
