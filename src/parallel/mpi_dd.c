@@ -409,12 +409,9 @@ static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
         gone[i] = dest[i] != P->rank;
         if (gone[i]) pack(P, ps, i, send + (pos[dest[i]]++) * (size_t)rs);
     }
-    size_t nsent = 0;
-    for (int r = 0; r < size; ++r) nsent += (size_t)cnt[r];
     const size_t got = exchange(P, send, cnt, rcnt);
     ry_particles_remove(ps, gone);
     append(P, ps, P->rbuf, got);
-    P->st.migrated += nsent;
     free(gone);
     free(dest);
     /* 4. After a checkpoint (and at the start), the owned particles in id order. */
@@ -457,10 +454,8 @@ static ry_status par_redistribute(ry_sim *sim, double reach, ry_error *err) {
     free(pos);
     long own = (long)nown, omax;
     MPI_Allreduce(&own, &omax, 1, MPI_LONG, MPI_MAX, P->comm);
-    P->st.owned = nown;
     P->st.owned_max = (size_t)omax;
     P->st.halo = P->nrecv;
-    P->st.searches++;
     P->st.redist_s += MPI_Wtime() - t0;
     return RY_OK;
 }
@@ -477,7 +472,6 @@ static ry_status par_halo_update(ry_sim *sim, ry_error *err) {
     const double *recv = halo_exchange(P, nf);
     for (size_t k = 0; k < P->nrecv; ++k)
         for (int q = 0; q < nf; ++q) ps->f[P->fid[q]][P->rslot[k]] = recv[k * (size_t)nf + q];
-    P->st.halo_updates++;
     P->st.halo_s += MPI_Wtime() - t0;
     return RY_OK;
 }

@@ -20,18 +20,15 @@
 
 /* Statistics of a rank's part of a run. */
 typedef struct ry_mpi_stats {
-    double comm_s;      /* seconds in exchanges and reductions, in all: */
-    double redist_s;    /* redistributions at searches (with the bisections) */
-    double halo_s;      /* halo updates between searches */
-    double reduce_s;    /* reductions (time step, guard, stop, search decision; they also
-                           wait for the slowest rank) */
-    long searches;      /* redistributions */
-    long rebalances;    /* fresh bisections */
-    long halo_updates;  /* halo exchanges between searches */
-    size_t owned, halo; /* particles at the last search */
-    size_t owned_max;   /* largest owned count over the ranks at the last search */
-    size_t migrated;    /* particles sent to other ranks, in all */
-    int fields;         /* values per particle in a halo update */
+    double comm_s;    /* seconds in exchanges and reductions, in all: */
+    double redist_s;  /* redistributions at searches (with the bisections) */
+    double halo_s;    /* halo updates between searches */
+    double reduce_s;  /* reductions (time step, guard, stop, search decision; they also
+                         wait for the slowest rank) */
+    long rebalances;  /* fresh bisections */
+    size_t halo;      /* halo copies at the last search */
+    size_t owned_max; /* largest owned count over the ranks at the last search */
+    int fields;       /* values per particle in a halo update */
 } ry_mpi_stats;
 
 /* Distributes a simulation set up (and possibly restored) identically on every rank of comm;
