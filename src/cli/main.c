@@ -50,8 +50,8 @@ static void usage(FILE *fp) {
         "        set the case up and report particles, memory and methods without running\n"
         "  ryushi bench neighbors [--quick] [--threads N]\n"
         "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
-        "  ryushi validate [dam_break|cavity|channel|cantilever|plate|buckling|iisph|rt|eye|all] "
-        "[--quick]\n"
+        "  ryushi validate [dam_break|cavity|channel|cantilever|plate|buckling|mps|iisph|rt|eye|"
+        "all] [--quick]\n"
         "        [-o DIR] [--threads N]\n"
         "        run the validation cases against their references, with plots\n"
         "        (default output folder out/validate)\n"
@@ -256,9 +256,9 @@ static int cmd_run_mpi(int argc, char **argv) {
         imbalance = strtod(imb, &end);
         if (*end || !(imbalance >= 1.0) || !(imbalance < 1e6)) {
             free(a.sets);
-            return rank == 0 ? bad_usage("RY_MPI_IMBALANCE: expected a number from 1 up, got '%s'",
-                                         imb)
-                             : 2;
+            return rank == 0
+                       ? bad_usage("RY_MPI_IMBALANCE: expected a number from 1 up, got '%s'", imb)
+                       : 2;
         }
     }
     ry_error err = {0};

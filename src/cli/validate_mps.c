@@ -223,14 +223,13 @@ typedef struct rest_result {
     double p, p_se, v_rms, v_max;
 } rest_result;
 
-static int run_rest(const char *root, const char *out, const char *sub, int nset,
+static int run_rest(const char *root, const char *out, const char *file, const char *sub, int nset,
                     const char *const *sets, rest_result *res) {
     ry_error err = {0};
     ry_table s;
     ry_sim sim;
     ry_run_stats stats;
-    if (run_mps(root, out, "cases/mps_drop_rest_2d.yaml", sub, nset, sets, &s, &sim, &stats,
-                &err) != RY_OK) {
+    if (run_mps(root, out, file, sub, nset, sets, &s, &sim, &stats, &err) != RY_OK) {
         printf("  %s failed: %s\n", sub, err.msg);
         return 0;
     }
@@ -259,42 +258,53 @@ static int run_rest(const char *root, const char *out, const char *sub, int nset
     return 1;
 }
 
-/* A circular drop at rest (cases/mps_drop_rest_2d.yaml): CSF (both curvature forms), pressure
- * in its middle half against sigma / R; the potential model, whose interior pressure carries
- * the model's cohesive pressure, by the difference of two radii,
- * p(R1) - p(R2) = sigma (1/R1 - 1/R2), which cancels it. Means over the second half of the run;
- * the spurious speeds beside. */
+/* Drops at rest. CSF: a circle (cases/mps_drop_rest_2d.yaml, R = 2 mm) and a sphere
+ * (cases/mps_drop_rest_3d.yaml, R = 1.2 mm), the pressure in the middle half against the
+ * Laplace jump (d - 1) sigma / R; the pressure form (the default) is checked, the force form
+ * printed beside it. The potential model, whose interior pressure carries the model's cohesive
+ * pressure, by the difference of two radii of the circle, p(R1) - p(R2) = sigma (1/R1 - 1/R2),
+ * which cancels it. Means over the second half of the run; the spurious speeds beside. */
 static void validate_rest(const char *root, const char *out, int *failures) {
-    const double sigma = 0.0728, R1 = 1e-3, R2 = 2e-3;
-    printf("MPS drop at rest, 2D (cases/mps_drop_rest_2d.yaml): sigma/R = %.2f Pa at R = 2 mm\n",
-           sigma / R2);
-    printf("  %-24s %16s %9s %14s %14s\n", "model", "jump [Pa]", "error", "rms speed [m/s]",
+    const double sigma = 0.0728, R1 = 1e-3, R2 = 2e-3, R3 = 1.2e-3;
+    printf("MPS drops at rest: circle R = 2 mm (cases/mps_drop_rest_2d.yaml), sigma/R = %.2f Pa; "
+           "sphere R = 1.2 mm (cases/mps_drop_rest_3d.yaml), 2 sigma/R = %.2f Pa\n",
+           sigma / R2, 2 * sigma / R3);
+    printf("  %-28s %16s %9s %14s %14s\n", "model", "jump [Pa]", "error", "rms speed [m/s]",
            "max speed [m/s]");
-    static const char *const curv[2] = {"divergence", "surface"};
-    for (int k = 0; k < 2; ++k) {
-        char sub[64], cset[64];
-        snprintf(sub, sizeof sub, "mps_rest_csf_%s", curv[k]);
-        snprintf(cset, sizeof cset, "surface_tension.curvature=%s", curv[k]);
-        const char *sets[] = {"surface_tension.model=csf", cset};
+    const struct {
+        const char *name, *file, *form;
+        double jump;
+        int checked;
+    } rest[] = {
+        {"csf (pressure form), 2D", "cases/mps_drop_rest_2d.yaml", "pressure", sigma / R2, 1},
+        {"csf (force form), 2D", "cases/mps_drop_rest_2d.yaml", "force", sigma / R2, 0},
+        {"csf (pressure form), 3D", "cases/mps_drop_rest_3d.yaml", "pressure", 2 * sigma / R3, 1},
+    };
+    for (size_t k = 0; k < sizeof rest / sizeof rest[0]; ++k) {
+        char sub[64], fset[64];
+        snprintf(sub, sizeof sub, "mps_rest_csf_%s_%zu", rest[k].form, k);
+        snprintf(fset, sizeof fset, "surface_tension.csf_form=%s", rest[k].form);
+        const char *sets[] = {"surface_tension.model=csf", fset};
         rest_result r;
-        if (!run_rest(root, out, sub, 2, sets, &r)) {
+        if (!run_rest(root, out, rest[k].file, sub, 2, sets, &r)) {
             ++*failures;
             continue;
         }
-        const double e = r.p / (sigma / R2) - 1;
-        char name[64], what[128];
-        snprintf(name, sizeof name, "csf, %s", curv[k]);
-        printf("  %-24s %8.2f +- %4.2f %+8.1f%% %14.4f %14.4f\n", name, r.p, r.p_se, 100 * e,
-               r.v_rms, r.v_max);
-        snprintf(what, sizeof what, "csf (curvature %s): pressure jump within 5 %% of sigma/R",
-                 curv[k]);
-        check(what, fabs(e) <= 0.05, failures);
+        const double e = r.p / rest[k].jump - 1;
+        printf("  %-28s %8.2f +- %4.2f %+8.1f%% %14.4f %14.4f\n", rest[k].name, r.p, r.p_se,
+               100 * e, r.v_rms, r.v_max);
+        if (rest[k].checked) {
+            char what[128];
+            snprintf(what, sizeof what, "%s: pressure jump within 5 %% of the Laplace jump",
+                     rest[k].name);
+            check(what, fabs(e) <= 0.05, failures);
+        }
     }
     rest_result r1, r2;
     const char *s1[] = {"surface_tension.model=potential", "bodies[0].radius=1.0e-3"};
     const char *s2[] = {"surface_tension.model=potential", "bodies[0].radius=2.0e-3"};
-    if (!run_rest(root, out, "mps_rest_potential_R1", 2, s1, &r1) ||
-        !run_rest(root, out, "mps_rest_potential_R2", 2, s2, &r2)) {
+    if (!run_rest(root, out, "cases/mps_drop_rest_2d.yaml", "mps_rest_potential_R1", 2, s1, &r1) ||
+        !run_rest(root, out, "cases/mps_drop_rest_2d.yaml", "mps_rest_potential_R2", 2, s2, &r2)) {
         ++*failures;
         return;
     }
