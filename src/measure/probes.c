@@ -96,14 +96,17 @@ static ry_status probe_front_x(const ry_sim *sim, double *v, ry_error *err) {
 /* Fluid particles inside a wall: inside the lattice cell (a square or cube of side dx centred
  * on the particle) of some wall particle, i.e. within dx/2 of it in every direction. The wall
  * surface lies half a spacing beyond the outer wall layer, so this counts exactly the fluid
- * particles that crossed it. Searches the cells of the last neighbour search (their edge, the
- * support plus the skin, exceeds dx/2 plus the distance any particle has moved since). */
+ * particles that crossed it. Searches cells of its own over the current positions (the run's
+ * cells may be older than the particle set: open boundaries add and remove particles after a
+ * step). */
 static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
-    (void)err;
     const ry_particles *ps = &sim->ps;
-    const ry_cell_list *cl = &sim->cells;
     *v = 0;
-    if (!cl->start || cl->n != ps->n) return RY_OK;
+    ry_cell_list cl;
+    memset(&cl, 0, sizeof cl);
+    const double *x[3];
+    ry_particles_coords(ps, x);
+    RY_TRY(ry_cells_build(&cl, &sim->box, sim->dx, ps->n, x, err));
     const double lim = 0.5 * sim->dx * (1 - 1e-9);
     int per[3];
     for (int d = 0; d < 3; ++d) per[d] = d < sim->dim && sim->box.periodic[d];
@@ -111,21 +114,21 @@ static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
         size_t cells[27];
-        const int nc = ry_cells_neighbours(cl, per, cl->cell_of[i], cells);
+        const int nc = ry_cells_neighbours(&cl, per, cl.cell_of[i], cells);
         int inside = 0;
         for (int c = 0; c < nc && !inside; ++c)
-            for (size_t q = cl->start[cells[c]]; q < cl->start[cells[c] + 1] && !inside; ++q) {
-                const uint32_t j = cl->order[q];
+            for (size_t q = cl.start[cells[c]]; q < cl.start[cells[c] + 1] && !inside; ++q) {
+                const uint32_t j = cl.order[q];
                 if (ps->kind[j] != RY_KIND_WALL) continue;
                 double dx[3] = {0, 0, 0}, dmax = 0;
-                for (int d = 0; d < sim->dim; ++d)
-                    dx[d] = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
+                for (int d = 0; d < sim->dim; ++d) dx[d] = x[d][i] - x[d][j];
                 ry_box_min_image(&sim->box, dx);
                 for (int d = 0; d < sim->dim; ++d) dmax = fmax(dmax, fabs(dx[d]));
                 inside = dmax < lim;
             }
         count += (size_t)inside;
     }
+    ry_cells_free(&cl);
     *v = (double)count;
     return RY_OK;
 }

@@ -166,12 +166,50 @@ static void test_damaged_checkpoints_rejected(void **state) {
     }
 }
 
+/* The in_wall probe reads the current positions, whatever the last neighbour search saw: a fluid
+ * particle moved into the floor of the tank (within dx/2 of a wall particle in every direction)
+ * is counted, and one moved just outside that cell is not. */
+static void test_in_wall_counts_current_positions(void **state) {
+    (void)state;
+    ry_sim sim;
+    ry_case *c = NULL;
+    ry_error err = {0};
+    assert_int_equal(setup(&sim, &c, &err), RY_OK);
+    sim.max_steps = 2;
+    ry_run_stats stats;
+    assert_int_equal(ry_sim_run(&sim, NULL, &stats, &err), RY_OK);
+    const ry_probe *probe = NULL;
+    for (const ry_probe *const *p = ry_probes(); *p; ++p)
+        if (strcmp((*p)->name, "in_wall") == 0) probe = *p;
+    assert_non_null(probe);
+    double v = -1;
+    assert_int_equal(probe->eval(&sim, &v, &err), RY_OK);
+    assert_true(v == 0);
+    size_t w = sim.ps.n; /* the top layer of the floor under the middle of the tank */
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.kind[i] == RY_KIND_WALL && fabs(sim.ps.f[RY_F_X][i] - 0.5) < 0.007 &&
+            sim.ps.f[RY_F_Y][i] < 0 && (w == sim.ps.n || sim.ps.f[RY_F_Y][i] > sim.ps.f[RY_F_Y][w]))
+            w = i;
+    assert_true(w < sim.ps.n);
+    const size_t i = first_fluid(&sim, 0);
+    sim.ps.f[RY_F_X][i] = sim.ps.f[RY_F_X][w] + 0.3 * sim.dx;
+    sim.ps.f[RY_F_Y][i] = sim.ps.f[RY_F_Y][w] - 0.2 * sim.dx;
+    assert_int_equal(probe->eval(&sim, &v, &err), RY_OK);
+    assert_true(v == 1);
+    sim.ps.f[RY_F_Y][i] = sim.ps.f[RY_F_Y][w] + 0.55 * sim.dx; /* just above the wall surface */
+    assert_int_equal(probe->eval(&sim, &v, &err), RY_OK);
+    assert_true(v == 0);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nan_stops_within_a_step),
         cmocka_unit_test(test_fluid_leaving_the_domain),
         cmocka_unit_test(test_checkpoint_round_trip),
         cmocka_unit_test(test_damaged_checkpoints_rejected),
+        cmocka_unit_test(test_in_wall_counts_current_positions),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
