@@ -145,6 +145,7 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
     for (size_t i = 0; i < n; ++i) {
         double x[3] = {0, 0, 0};
         for (int d = 0; d < dim; ++d) x[d] = ps->f[RY_F_X + d][i];
+        int in_outlet = 0; /* inside the zone of some outlet */
         for (int q = 0; q < sim->nopen; ++q) {
             ry_open_boundary *b = &sim->open[q];
             const double downstream = b->sign > 0 ? b->hi[b->axis] : b->lo[b->axis];
@@ -167,6 +168,7 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
             }
             if (b->type != RY_OPEN_OUTLET) continue;
             const int across = inside_across(b, x, dim);
+            in_outlet |= across && past(b, x, upstream) >= 0 && past(b, x, downstream) < 0;
             if (across && ps->kind[i] == RY_KIND_FLUID && past(b, x, upstream) >= 0 &&
                 past(b, x, downstream) < 0) {
                 ps->kind[i] = RY_KIND_OUTLET;
@@ -189,9 +191,15 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 remove[i] = 1;
                 nremove++;
                 b->count++;
+                in_outlet = 1;
                 break;
             }
         }
+        /* An outlet particle that went back upstream of its zone (gravity pulling the fluid back
+         * from an outlet above it, a reversed flow) is fluid again: left as an outlet particle,
+         * with its pressure fixed, it would fall through the fluid and the walls and out of the
+         * domain, and its speed would set the time step. */
+        if (ps->kind[i] == RY_KIND_OUTLET && !in_outlet) ps->kind[i] = RY_KIND_FLUID;
     }
     if (nspawn) {
         size_t first;

@@ -14,6 +14,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "ryushi/case.h"
+#include "ryushi/sim.h"
 #include "ryushi/validate.h"
 
 static char root[2048], tmpdir[256];
@@ -96,12 +98,64 @@ static void test_channel_poiseuille(void **state) {
     ry_table_free(&prof);
 }
 
+/* Conversions at the outlet of the same channel (outlet zone x = 0.40..0.42 m): a fluid particle
+ * inside the zone becomes an outlet particle; one that goes back upstream of the zone (gravity
+ * pulling fluid back from an outlet above it) is fluid again, as is an outlet particle found far
+ * from the zone; one past the downstream face is removed and counted as outflow. */
+static void test_outlet_conversions(void **state) {
+    (void)state;
+    char cp[4096], od[512];
+    snprintf(cp, sizeof cp, "%s/cases/channel_inflow.yaml", root);
+    snprintf(od, sizeof od, "%s/conversions", tmpdir);
+    ry_case *c = NULL;
+    ry_sim sim;
+    memset(&sim, 0, sizeof sim);
+    ry_error err = {0};
+    assert_int_equal(ry_case_load(&c, cp, &err), RY_OK);
+    assert_int_equal(ry_sim_setup(&sim, c, od, &err), RY_OK);
+    size_t a = sim.ps.n, b = sim.ps.n;
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.kind[i] == RY_KIND_FLUID) {
+            if (a == sim.ps.n)
+                a = i;
+            else if (b == sim.ps.n) {
+                b = i;
+                break;
+            }
+        }
+    assert_true(b < sim.ps.n);
+    const long long ida = (long long)sim.ps.id[a], idb = (long long)sim.ps.id[b];
+    sim.ps.f[RY_F_X][a] = 0.41;
+    sim.ps.f[RY_F_Y][a] = 0.05;
+    assert_int_equal(ry_open_update(&sim, &err), RY_OK);
+    assert_int_equal(sim.ps.kind[a], RY_KIND_OUTLET);
+    sim.ps.f[RY_F_X][a] = 0.395;     /* back upstream of the zone */
+    sim.ps.kind[b] = RY_KIND_OUTLET; /* an outlet particle far from the zone */
+    sim.ps.f[RY_F_X][b] = 0.2;
+    assert_int_equal(ry_open_update(&sim, &err), RY_OK);
+    assert_int_equal(sim.ps.kind[a], RY_KIND_FLUID);
+    assert_int_equal(sim.ps.kind[b], RY_KIND_FLUID);
+    assert_int_equal((long long)sim.ps.id[a], ida);
+    assert_int_equal((long long)sim.ps.id[b], idb);
+    sim.ps.f[RY_F_X][a] = 0.41;
+    assert_int_equal(ry_open_update(&sim, &err), RY_OK);
+    assert_int_equal(sim.ps.kind[a], RY_KIND_OUTLET);
+    const size_t n = sim.ps.n;
+    sim.ps.f[RY_F_X][a] = 0.425; /* past the downstream face */
+    assert_int_equal(ry_open_update(&sim, &err), RY_OK);
+    assert_int_equal(sim.ps.n, n - 1);
+    assert_true(ry_open_volume(&sim, RY_OPEN_OUTLET) > 0);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 int main(void) {
     const char *r = getenv("RY_SOURCE_DIR");
     snprintf(root, sizeof root, "%s", r ? r : ".");
     snprintf(tmpdir, sizeof tmpdir, "/tmp/ryushi_open_XXXXXX");
     if (!mkdtemp(tmpdir)) return 1;
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_outlet_conversions),
         cmocka_unit_test(test_channel_poiseuille),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
