@@ -168,9 +168,9 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
             }
             if (b->type != RY_OPEN_OUTLET) continue;
             const int across = inside_across(b, x, dim);
-            in_outlet |= across && past(b, x, upstream) >= 0 && past(b, x, downstream) < 0;
-            if (across && ps->kind[i] == RY_KIND_FLUID && past(b, x, upstream) >= 0 &&
-                past(b, x, downstream) < 0) {
+            const int in_zone = across && past(b, x, upstream) >= 0 && past(b, x, downstream) < 0;
+            in_outlet |= in_zone;
+            if (in_zone && ps->kind[i] == RY_KIND_FLUID) {
                 ps->kind[i] = RY_KIND_OUTLET;
                 ps->f[RY_F_P][i] = b->pressure;
                 ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;

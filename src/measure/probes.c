@@ -93,23 +93,29 @@ static ry_status probe_front_x(const ry_sim *sim, double *v, ry_error *err) {
     return RY_OK;
 }
 
+/* Cells of edge >= radius over the current positions, for probes that must not read the run's
+ * neighbour structures (they may be older than the particle set: open boundaries add and remove
+ * particles after a step); x and per receive the coordinates and the periodic directions. */
+static ry_status current_cells(const ry_sim *sim, double radius, ry_cell_list *cl,
+                               const double *x[3], int per[3], ry_error *err) {
+    memset(cl, 0, sizeof *cl);
+    ry_particles_coords(&sim->ps, x);
+    for (int d = 0; d < 3; ++d) per[d] = d < sim->dim && sim->box.periodic[d];
+    return ry_cells_build(cl, &sim->box, radius, sim->ps.n, x, err);
+}
+
 /* Fluid particles inside a wall: inside the lattice cell (a square or cube of side dx centred
  * on the particle) of some wall particle, i.e. within dx/2 of it in every direction. The wall
  * surface lies half a spacing beyond the outer wall layer, so this counts exactly the fluid
- * particles that crossed it. Searches cells of its own over the current positions (the run's
- * cells may be older than the particle set: open boundaries add and remove particles after a
- * step). */
+ * particles that crossed it. Searches cells of its own (current_cells). */
 static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     *v = 0;
     ry_cell_list cl;
-    memset(&cl, 0, sizeof cl);
     const double *x[3];
-    ry_particles_coords(ps, x);
-    RY_TRY(ry_cells_build(&cl, &sim->box, sim->dx, ps->n, x, err));
-    const double lim = 0.5 * sim->dx * (1 - 1e-9);
     int per[3];
-    for (int d = 0; d < 3; ++d) per[d] = d < sim->dim && sim->box.periodic[d];
+    RY_TRY(current_cells(sim, sim->dx, &cl, x, per, err));
+    const double lim = 0.5 * sim->dx * (1 - 1e-9);
     size_t count = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
@@ -192,21 +198,16 @@ static int near_port_axis(const ry_sim *sim, size_t i) {
 /* Wall wetted by the injected fluid: among the wall particles with a fluid particle within the
  * kernel support (the wetted wall, e.g. the retina), the fraction whose nearest fluid particle
  * is of the second material (the injected fluid, e.g. silicone oil). Wall particles of the
- * ports (near_port_axis) do not count. Searches cells of its own over the current positions
- * (the run's neighbour list may be older than the particle set: open boundaries add and
- * remove particles after a step). */
+ * ports (near_port_axis) do not count. Searches cells of its own (current_cells). */
 static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *err) {
     RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
              "measurement 'oil_wall_contact' needs two materials (the second is the injected one)");
     const ry_particles *ps = &sim->ps;
     const double rad2 = sim->kernel.radius * sim->kernel.radius;
     ry_cell_list cl;
-    memset(&cl, 0, sizeof cl);
     const double *x[3];
-    ry_particles_coords(ps, x);
-    RY_TRY(ry_cells_build(&cl, &sim->box, sim->kernel.radius, ps->n, x, err));
     int per[3];
-    for (int d = 0; d < 3; ++d) per[d] = d < sim->dim && sim->box.periodic[d];
+    RY_TRY(current_cells(sim, sim->kernel.radius, &cl, x, per, err));
     size_t wet = 0, oil = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_WALL || near_port_axis(sim, i)) continue;

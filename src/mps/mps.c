@@ -140,8 +140,11 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
                               M->csf_pressure ? "surface" : "divergence", ry_st_curvature_names,
                               &curv, err));
         long passes = 2;
-        if (M->csf_pressure)
-            RY_TRY(ry_case_int(c, "surface_tension.smoothing", &passes, 0, 20, &passes, err));
+        char where[256];
+        RY_CHECK(err, M->csf_pressure || !ry_case_has(c, "surface_tension.smoothing"), RY_ERR_INPUT,
+                 "%s: key 'surface_tension.smoothing': applies to csf_form: pressure only",
+                 ry_case_where(c, "surface_tension.smoothing", where, sizeof where));
+        RY_TRY(ry_case_int(c, "surface_tension.smoothing", &passes, 0, 20, &passes, err));
         M->csf_smooth = (int)passes;
     }
     M->re_g *= l0;
@@ -477,11 +480,12 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
  * 1): the single values are noisy enough to drive a 3D drop at rest unstable (a drop of 8
  * spacings' radius at 1.5 ms, one of 12 spacings slowly); the average over the wider surface
  * tension radius also smooths the corners of an oscillating cube and slows it (cube of 20^3:
- * period +37 % against +5.5 % here). (2) The surface particles sit half a spacing inside the
- * free surface (as for the hydrostatic column), and the curvature read at them is that of
- * their own layer: a sphere of radius R - l0/2 rather than R. Each principal curvature k of the
- * layer becomes k / (1 + k l0/2) at the surface; with kappa = (d - 1) k,
- * kappa_s = kappa / (1 + kappa l0 / (2 (d - 1))). Never singular: |kappa| <= (d - 1)/(2 l0). */
+ * period +37 %). (2) The surface particles sit half a spacing inside the free surface (as for
+ * the hydrostatic column), and the curvature read at them is that of their own layer: a sphere
+ * of radius R - l0/2 rather than R. Each principal curvature k of the layer becomes
+ * k / (1 + k l0/2) at the surface; with kappa = (d - 1) k,
+ * kappa_s = kappa / (1 + kappa l0 / (2 (d - 1))). Only convex curvatures are corrected:
+ * enlarging the concave ones by the same rule made the oscillating 30^3 cube unstable. */
 static void csf_dirichlet(ry_sim *sim, mps *M) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
