@@ -14,6 +14,7 @@
 #include "ryushi/kernel.h"
 #include "ryushi/neighbor.h"
 #include "ryushi/particles.h"
+#include "ryushi/rheology.h"
 #include "ryushi/status.h"
 
 typedef struct ry_sim ry_sim;
@@ -30,7 +31,8 @@ typedef struct ry_state_var {
 typedef struct ry_material {
     char *name;
     double density;   /* reference density rho0 [kg/m^3] */
-    double viscosity; /* kinematic viscosity nu [m^2/s] */
+    double viscosity; /* kinematic viscosity nu [m^2/s] (Oldroyd-B: the solvent's) */
+    ry_rheology rheo; /* Newtonian unless materials[i].rheology says otherwise */
 } ry_material;
 
 /* A scheme: how particles advance in time. */

@@ -427,10 +427,11 @@ int ry_cli_validate(int argc, char **argv) {
     if (!all && strcmp(what, "dam_break") != 0 && strcmp(what, "cavity") != 0 &&
         strcmp(what, "channel") != 0 && strcmp(what, "cantilever") != 0 &&
         strcmp(what, "plate") != 0 && strcmp(what, "buckling") != 0 && strcmp(what, "mps") != 0 &&
-        strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 && strcmp(what, "eye") != 0) {
+        strcmp(what, "rheology") != 0 && strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 &&
+        strcmp(what, "eye") != 0) {
         fprintf(stderr,
                 "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
-                "buckling, mps, iisph, rt, eye or all, got '%s'\n",
+                "buckling, mps, rheology, iisph, rt, eye or all, got '%s'\n",
                 what);
         return 2;
     }
@@ -444,6 +445,8 @@ int ry_cli_validate(int argc, char **argv) {
     if (all || strcmp(what, "buckling") == 0)
         ry_cli_validate_buckling(v.root, v.out, v.quick, &v.failures);
     if (all || strcmp(what, "mps") == 0) ry_cli_validate_mps(v.root, v.out, v.quick, &v.failures);
+    if (all || strcmp(what, "rheology") == 0)
+        ry_cli_validate_rheology(v.root, v.out, v.quick, &v.failures);
     if (all || strcmp(what, "iisph") == 0)
         ry_cli_validate_iisph(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "rt") == 0) ry_cli_validate_rt(v.root, v.out, v.quick, &v.failures);

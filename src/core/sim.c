@@ -47,6 +47,13 @@ static ry_status read_materials(ry_sim *sim, ry_case *c, ry_error *err) {
         RY_TRY(ry_case_positive(c, k, NULL, &m->density, err));
         snprintf(k, sizeof k, "materials[%zu].viscosity", i);
         RY_TRY(ry_case_double(c, k, &zero, 0.0, INFINITY, &m->viscosity, err));
+        char prefix[48];
+        snprintf(prefix, sizeof prefix, "materials[%zu]", i);
+        RY_TRY(ry_rheology_read(c, prefix, &m->rheo, err));
+        RY_CHECK(err, !ry_rheology_generalised(&m->rheo) || !ry_case_has(c, k), RY_ERR_INPUT,
+                 "%s: key '%s': not used with rheology.model %s (the viscosity follows from the "
+                 "shear rate)",
+                 ry_case_where(c, k, where, sizeof where), k, ry_rheology_names[m->rheo.model]);
     }
     return RY_OK;
 }
@@ -146,6 +153,15 @@ static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {
     free(names);
     RY_TRY(st);
     sim->scheme = all[which];
+    /* Non-Newtonian materials are carried by the MPS scheme (docs/rheology.md). */
+    for (int m = 0; m < sim->nmat && strcmp(sim->scheme->name, "mps") != 0; ++m) {
+        char k[96], where[256];
+        snprintf(k, sizeof k, "materials[%d].rheology.model", m);
+        RY_CHECK(err, sim->mat[m].rheo.model == RY_RHEO_NEWTONIAN, RY_ERR_INPUT,
+                 "%s: key '%s': %s is available with scheme mps only (this case uses %s)",
+                 ry_case_where(c, k, where, sizeof where), k,
+                 ry_rheology_names[sim->mat[m].rheo.model], sim->scheme->name);
+    }
     return sim->scheme->init(sim, c, &sim->scheme_state, err);
 }
 

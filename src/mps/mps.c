@@ -53,6 +53,13 @@ typedef struct mps {
     int dilate;            /* number-density source also for n* < n0 (else compression only) */
     ry_surface_tension st;
     int f_nd, f_surf, f_vs[3]; /* fields */
+    int rheo_gnf;              /* some material's viscosity follows the shear rate */
+    int rheo_ob;               /* some material is Oldroyd-B */
+    int f_nu, f_gd;            /* fields with rheology: viscosity [m^2/s], shear rate [1/s] */
+    int f_tau[6];              /* Oldroyd-B polymer stress [Pa], components as tau_comp */
+    double *vgrad;             /* velocity gradient, dim x dim per particle (Oldroyd-B) */
+    int wall_mirror;           /* walls' velocity in the viscous terms: mirrored from the fluid */
+    double *wd;                /* with it: distance of each particle to the wall surface */
     ry_csr A;
     int32_t *unk; /* unknown index per particle, -1 if none */
     uint8_t *role;
@@ -68,9 +75,13 @@ typedef struct mps {
     long total_iters, steps;
 } mps;
 
+static ry_status rheology_init(ry_sim *sim, mps *M, ry_error *err);
+static void rheology_explicit(ry_sim *sim, mps *M, double dt);
+
 static const char *const source_names[] = {"tanaka_masunaga", "number_density", NULL};
 static const char *const visc_names[] = {"explicit", "implicit", "none", NULL};
 static const char *const grad_names[] = {"corrected", "standard", NULL};
+static const char *const wall_velocity_names[] = {"own", "mirrored", NULL};
 
 void ry_mps_lattice(int dim, double l0, double re, double *n0, double *lambda) {
     const int K = (int)floor(re / l0 + 1e-9);
@@ -108,6 +119,8 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_case_double(c, "scheme.compressibility", &zero, 0.0, 1.0, &M->alpha, err));
     RY_TRY(ry_case_choice(c, "scheme.viscosity", "explicit", visc_names, &M->visc, err));
     RY_TRY(ry_case_choice(c, "scheme.gradient", "corrected", grad_names, &M->grad, err));
+    RY_TRY(ry_case_choice(c, "scheme.wall_velocity", "own", wall_velocity_names, &M->wall_mirror,
+                          err));
     RY_TRY(ry_case_bool(c, "scheme.clamp_negative_pressure", &yes, &M->clamp, err));
     int no = 0;
     RY_TRY(ry_case_bool(c, "scheme.source_dilatation", &no, &M->dilate, err));
@@ -163,6 +176,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
         RY_TRY(ry_particles_add_field(ps, vs[d], "m/s", d, 0, &M->f_vs[d], err));
     RY_TRY(ry_particles_add_field(ps, "number_density", "1", -1, RY_FIELD_OUTPUT, &M->f_nd, err));
     RY_TRY(ry_particles_add_field(ps, "free_surface", "1", -1, RY_FIELD_OUTPUT, &M->f_surf, err));
+    RY_TRY(rheology_init(sim, M, err));
     for (size_t i = 0; i < ps->n; ++i) {
         ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
         ps->f[RY_F_P][i] = 0;
@@ -181,6 +195,8 @@ static void mps_free(void *state) {
     free(M->pd);
     free(M->own);
     free(M->ptmp);
+    free(M->vgrad);
+    free(M->wd);
     free(M);
 }
 
@@ -201,7 +217,14 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (o) M->own = o;
     double *t = realloc(M->ptmp, c * sizeof *t);
     if (t) M->ptmp = t;
-    RY_CHECK(err, u && r && b && x && pd && o && t, RY_ERR_NOMEM,
+    double *vg = M->vgrad;
+    if (M->rheo_ob) {
+        vg = realloc(M->vgrad, 9 * c * sizeof *vg);
+        if (vg) M->vgrad = vg;
+    }
+    double *wv = realloc(M->wd, c * sizeof *wv);
+    if (wv) M->wd = wv;
+    RY_CHECK(err, u && r && b && x && pd && o && t && wv && (vg || !M->rheo_ob), RY_ERR_NOMEM,
              "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
@@ -275,11 +298,197 @@ static void number_density(ry_sim *sim, mps *M) {
     }
 }
 
-/* Kinematic viscosity of a pair (harmonic mean: symmetric, and 0 next to an inviscid fluid). */
-static inline double pair_nu(const ry_sim *sim, size_t i, size_t j) {
-    const double a = sim->mat[sim->ps.material[i]].viscosity;
-    const double b = sim->mat[sim->ps.material[j]].viscosity;
+/* Kinematic viscosity of a pair (harmonic mean: symmetric, and 0 next to an inviscid fluid).
+ * With a shear-rate dependent viscosity each particle has its own value (field f_nu, set by
+ * rheology_explicit), and a wall takes the fluid particle's. */
+static inline double pair_nu(const ry_sim *sim, const mps *M, size_t i, size_t j) {
+    double a, b;
+    if (M->rheo_gnf) {
+        a = sim->ps.f[M->f_nu][i];
+        b = sim->ps.kind[j] == RY_KIND_FLUID ? sim->ps.f[M->f_nu][j] : a;
+    } else {
+        a = sim->mat[sim->ps.material[i]].viscosity;
+        b = sim->mat[sim->ps.material[j]].viscosity;
+    }
     return a + b > 0 ? 2.0 * a * b / (a + b) : 0.0;
+}
+
+/* With `wall_velocity: mirrored` a wall particle j enters the viscous terms of fluid particle i
+ * with the velocity of the flow extended linearly through the wall surface (Morris et al.
+ * 1997): u_j = v_j - (d_j/d_i)(u_i - v_j), d the distances to the surface, so that
+ * u_j - u_i = beta (v_j - u_i), beta = 1 + d_j/d_i (at most 1.5 + 1, as a fluid particle
+ * close to the surface would otherwise see a huge velocity difference). With the wall's own
+ * velocity the no-slip plane lies about 0.7 l0 beyond the wall surface. The distances: that
+ * to the nearest particle of the other kind (fluid for a wall, wall for a fluid particle) less
+ * half a spacing, which is exact on a lattice beside a flat wall. */
+static inline double wall_beta(const ry_sim *sim, const mps *M, size_t i, size_t j) {
+    if (!M->wall_mirror || sim->ps.kind[j] == RY_KIND_FLUID) return 1.0;
+    return 1.0 + fmin(M->wd[j] / fmax(M->wd[i], 1e-3 * sim->dx), 1.5);
+}
+
+static void wall_distances(ry_sim *sim, mps *M) {
+    const ry_particles *ps = &sim->ps;
+    const double re2 = M->re_l * M->re_l;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < ps->n; ++i) {
+        const int fi = ps->kind[i] == RY_KIND_FLUID;
+        double r2min = INFINITY;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            if ((ps->kind[j] == RY_KIND_FLUID) == fi) continue;
+            double dx[3];
+            const double r2 = sep(sim, i, j, dx);
+            if (r2 < re2) r2min = fmin(r2min, r2);
+        }
+        M->wd[i] = isfinite(r2min) ? fmax(sqrt(r2min) - 0.5 * sim->dx, 0.0) : INFINITY;
+    }
+}
+
+/* Rheology (docs/rheology.md). The symmetric polymer stress is stored by components: in 2D
+ * xx, yy, xy; in 3D xx, yy, zz, xy, xz, yz. */
+static const int tau_a[6] = {0, 1, 2, 0, 0, 1}, tau_b[6] = {0, 1, 2, 1, 2, 2};
+static int tau_count(int dim) {
+    return dim == 2 ? 3 : 6;
+}
+static int tau_comp(int dim, int k) { /* storage slot k -> index into tau_a/tau_b */
+    return dim == 2 && k == 2 ? 3 : k;
+}
+
+static ry_status rheology_init(ry_sim *sim, mps *M, ry_error *err) {
+    M->f_nu = M->f_gd = -1;
+    for (int k = 0; k < 6; ++k) M->f_tau[k] = -1;
+    for (int m = 0; m < sim->nmat; ++m) {
+        M->rheo_gnf |= ry_rheology_generalised(&sim->mat[m].rheo);
+        M->rheo_ob |= sim->mat[m].rheo.model == RY_RHEO_OLDROYD_B;
+    }
+    if (!M->rheo_gnf && !M->rheo_ob) return RY_OK;
+    ry_particles *ps = &sim->ps;
+    RY_TRY(ry_particles_add_field(ps, "viscosity", "m^2/s", -1, RY_FIELD_OUTPUT, &M->f_nu, err));
+    RY_TRY(ry_particles_add_field(ps, "shear_rate", "1/s", -1, RY_FIELD_OUTPUT, &M->f_gd, err));
+    static const char *const names[6] = {"tau_xx", "tau_yy", "tau_zz",
+                                         "tau_xy", "tau_xz", "tau_yz"};
+    for (int k = 0; M->rheo_ob && k < tau_count(sim->dim); ++k)
+        RY_TRY(ry_particles_add_field(ps, names[tau_comp(sim->dim, k)], "Pa", -1,
+                                      RY_FIELD_STATE | RY_FIELD_OUTPUT, &M->f_tau[k], err));
+    return RY_OK;
+}
+
+/* Corrected (least-squares) gradient at particle i of the dim-vector or scalar fields
+ * val(j, c), c < nc, over the neighbours within re_g that `use` accepts: grad[c][b] =
+ * d val_c / d x_b, exact for linear fields however one-sided the neighbourhood. Returns 0 when
+ * the moment matrix is singular (too few neighbours); grad is then zero. */
+typedef double (*grad_value_fn)(const ry_sim *sim, const mps *M, size_t i, size_t j, int c);
+static int corrected_gradient(const ry_sim *sim, const mps *M, size_t i, int fluid_only,
+                              grad_value_fn val, int nc, double grad[6][3]) {
+    const int dim = sim->dim;
+    const double re2 = M->re_g * M->re_g;
+    double m[3][3] = {{0}}, g[6][3] = {{0}};
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const uint32_t j = sim->nl.j[q];
+        if (fluid_only && sim->ps.kind[j] != RY_KIND_FLUID) continue;
+        double dx[3];
+        const double r2 = sep(sim, i, j, dx);
+        if (r2 >= re2 || r2 <= 0) continue;
+        const double wr = ry_mps_weight_tamai(sqrt(r2), M->re_g) / r2;
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
+        for (int c = 0; c < nc; ++c) {
+            const double dv = val(sim, M, i, j, c) - val(sim, M, i, i, c);
+            for (int b = 0; b < dim; ++b) g[c][b] += wr * dv * dx[b];
+        }
+    }
+    int ok = 1;
+    for (int c = 0; c < nc; ++c) {
+        double x[3] = {0, 0, 0};
+        ok = ok && ry_solve_small(dim, m, g[c], x);
+        for (int b = 0; b < 3; ++b) grad[c][b] = ok ? x[b] : 0.0;
+    }
+    return ok;
+}
+
+/* Velocity of j seen from fluid particle i: a wall's mirrored as in the viscous terms. */
+static double velocity_value(const ry_sim *sim, const mps *M, size_t i, size_t j, int c) {
+    const double vj = sim->ps.f[RY_F_VX + c][j];
+    if (j == i) return vj;
+    return vj + (wall_beta(sim, M, i, j) - 1.0) * (vj - sim->ps.f[RY_F_VX + c][i]);
+}
+
+static double tau_value(const ry_sim *sim, const mps *M, size_t i, size_t j, int c) {
+    (void)i;
+    return sim->ps.f[M->f_tau[c]][j];
+}
+
+/* At x^n: the velocity gradient L (L[a][b] = du_a/dx_b, over fluid and wall neighbours, walls
+ * with their own velocity), the shear rate sqrt(2 D:D) and the viscosity it gives; with
+ * Oldroyd-B the acceleration div(tau)/rho (tau's gradient over the fluid neighbours) and the
+ * stress at t + dt, tau' = (tau + dt (L tau + tau L^T + 2 rho nu_p D / lambda)) / (1 + dt /
+ * lambda): the upper-convected terms explicit, the relaxation implicit (stable for any dt). */
+static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim, nt = tau_count(dim);
+    const size_t n = ps->n;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        const ry_material *mat = &sim->mat[ps->material[i]];
+        if (ps->kind[i] != RY_KIND_FLUID) {
+            ps->f[M->f_nu][i] = mat->viscosity;
+            ps->f[M->f_gd][i] = 0;
+            continue;
+        }
+        double L[6][3];
+        corrected_gradient(sim, M, i, 0, velocity_value, dim, L);
+        double dd = 0;
+        for (int a = 0; a < dim; ++a)
+            for (int b = 0; b < dim; ++b) {
+                const double d = 0.5 * (L[a][b] + L[b][a]);
+                dd += d * d;
+            }
+        const double gd = sqrt(2.0 * dd);
+        ps->f[M->f_gd][i] = gd;
+        ps->f[M->f_nu][i] = ry_rheology_nu(&mat->rheo, mat->viscosity, gd);
+        if (M->rheo_ob)
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b)
+                    M->vgrad[9 * i + 3 * a + b] = a < dim && b < dim ? L[a][b] : 0.0;
+    }
+    if (sim->par) sim->par->sync(sim, ps->f[M->f_nu], 1);
+    if (!M->rheo_ob) return;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double G[6][3];
+        corrected_gradient(sim, M, i, 1, tau_value, nt, G);
+        double div[3] = {0, 0, 0};
+        for (int k = 0; k < nt; ++k) {
+            const int a = tau_a[tau_comp(dim, k)], b = tau_b[tau_comp(dim, k)];
+            div[a] += G[k][b];
+            if (a != b) div[b] += G[k][a];
+        }
+        const double rho = sim->mat[ps->material[i]].density;
+        for (int d = 0; d < dim; ++d) ps->f[RY_F_AX + d][i] += div[d] / rho;
+    }
+    /* The stress update reads only particle i's own values: no race. */
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        const ry_material *mat = &sim->mat[ps->material[i]];
+        if (ps->kind[i] != RY_KIND_FLUID || mat->rheo.model != RY_RHEO_OLDROYD_B) continue;
+        const double *L = &M->vgrad[9 * i], lam = mat->rheo.relaxation;
+        const double eta_p = mat->density * mat->rheo.nu_polymer;
+        double t[3][3];
+        for (int k = 0; k < nt; ++k) {
+            const int a = tau_a[tau_comp(dim, k)], b = tau_b[tau_comp(dim, k)];
+            t[a][b] = t[b][a] = ps->f[M->f_tau[k]][i];
+        }
+        for (int k = 0; k < nt; ++k) {
+            const int a = tau_a[tau_comp(dim, k)], b = tau_b[tau_comp(dim, k)];
+            double up = 0; /* (L tau + tau L^T)_ab */
+            for (int c = 0; c < dim; ++c) up += L[3 * a + c] * t[c][b] + t[a][c] * L[3 * b + c];
+            const double dab = 0.5 * (L[3 * a + b] + L[3 * b + a]);
+            ps->f[M->f_tau[k]][i] =
+                (t[a][b] + dt * (up + 2.0 * eta_p * dab / lam)) / (1.0 + dt / lam);
+        }
+    }
+    for (int k = 0; sim->par && k < nt; ++k) sim->par->sync(sim, ps->f[M->f_tau[k]], 1);
 }
 
 /* a += nu lap v (explicit viscosity, eq. 7) for fluid particles; walls enter with their
@@ -298,9 +507,10 @@ static void viscous_explicit(ry_sim *sim, const mps *M) {
             double dx[3];
             const double r2 = sep(sim, i, j, dx);
             if (r2 >= re2) continue;
-            const double w = pair_nu(sim, i, j) * ry_mps_weight_tamai(sqrt(r2), re);
+            const double w = pair_nu(sim, M, i, j) * ry_mps_weight_tamai(sqrt(r2), re);
             for (int d = 0; d < dim; ++d)
-                s[d] += w * (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]);
+                s[d] +=
+                    w * wall_beta(sim, M, i, j) * (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]);
         }
         for (int d = 0; d < dim; ++d) ps->f[RY_F_AX + d][i] += cl * s[d];
     }
@@ -375,8 +585,7 @@ static int couple_pressure(const ry_sim *sim, const mps *M, size_t i, size_t j, 
 /* Viscosity: every pair; walls are known velocities. */
 static int couple_viscous(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
                           double dt) {
-    (void)M;
-    *coef = dt * pair_nu(sim, i, j);
+    *coef = dt * pair_nu(sim, M, i, j) * wall_beta(sim, M, i, j);
     return 1;
 }
 
@@ -403,7 +612,8 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
                 double dx[3];
                 const double r2 = sep(sim, i, j, dx);
                 if (r2 >= re2) continue;
-                rhs += cl * dt * pair_nu(sim, i, j) * ry_mps_weight_tamai(sqrt(r2), re) * v[j];
+                rhs += cl * dt * pair_nu(sim, M, i, j) * ry_mps_weight_tamai(sqrt(r2), re) *
+                       wall_beta(sim, M, i, j) * v[j];
             }
             M->b[M->unk[i]] = rhs;
             M->xs[M->unk[i]] = v[i];
@@ -529,6 +739,14 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
      * largest density (a bound; exact for one material). */
     double rho_max = 0;
     for (int m = 0; m < sim->nmat; ++m) rho_max = fmax(rho_max, sim->mat[m].density);
+    if (M->alpha == 0) { /* a closed domain leaves the pressure without a reference value */
+        size_t nsurf = 0;
+        for (size_t i = 0; i < n; ++i) nsurf += M->role[i] == ROLE_SURFACE;
+        if (sim->par) nsurf = (size_t)sim->par->sum(sim, (double)nsurf);
+        RY_CHECK(err, nsurf > 0 || nunk == 0, RY_ERR_INPUT,
+                 "MPS: no free-surface particle, so the pressure equation has no reference value "
+                 "(a closed or periodic domain): set scheme.compressibility (e.g. 1e-9 1/Pa)");
+    }
     RY_TRY(assemble(sim, M, nunk, couple_pressure, dt, M->alpha * rho_max / (dt * dt), err));
     const double *nd = ps->f[M->f_nd];
     const double g = M->gamma;
@@ -664,6 +882,21 @@ static void collisions(ry_sim *sim, mps *M, double dt) {
     }
 }
 
+/* Fluid particles that crossed a periodic side back into the box. */
+static void wrap_periodic(ry_sim *sim) {
+    ry_particles *ps = &sim->ps;
+    for (int d = 0; d < sim->dim; ++d) {
+        if (!sim->box.periodic[d]) continue;
+        const double lo = sim->box.lo[d], L = sim->box.hi[d] - lo;
+        double *x = ps->f[RY_F_X + d];
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (ps->kind[i] != RY_KIND_FLUID) continue;
+            if (x[i] < lo) x[i] += L;
+            if (x[i] >= lo + L) x[i] -= L;
+        }
+    }
+}
+
 static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     mps *M = state;
     ry_particles *ps = &sim->ps;
@@ -677,6 +910,8 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     for (size_t i = 0; i < n; ++i)
         for (int d = 0; d < dim; ++d) a[d][i] = ps->kind[i] == RY_KIND_FLUID ? sim->gravity[d] : 0;
     if (!M->csf_pressure) RY_TRY(ry_st_accelerate(&M->st, sim, a, err));
+    if (M->wall_mirror) wall_distances(sim, M);
+    if (M->rheo_gnf || M->rheo_ob) rheology_explicit(sim, M, dt);
     if (M->visc == VISC_EXPLICIT) viscous_explicit(sim, M);
     if (M->visc == VISC_IMPLICIT) {
         RY_TRY(viscous_implicit(sim, M, dt, err));
@@ -689,6 +924,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     for (size_t i = 0; i < n; ++i)
         if (ps->kind[i] == RY_KIND_FLUID)
             for (int d = 0; d < dim; ++d) ps->f[RY_F_X + d][i] += dt * ps->f[M->f_vs[d]][i];
+    wrap_periodic(sim);
     /* Pressure at x* (the list may be rebuilt and the particles reordered). */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
@@ -701,6 +937,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
             sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
         }
     collisions(sim, M, dt);
+    wrap_periodic(sim);
     M->steps++;
     return RY_OK;
 }
@@ -717,9 +954,13 @@ static ry_status mps_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
         for (int d = 0; d < sim->dim; ++d) s += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
         v2 = fmax(v2, s);
     }
+    double elastic = INFINITY; /* Oldroyd-B: shear waves at sqrt(nu_p / lambda) */
     for (int m = 0; m < sim->nmat; ++m) {
+        const ry_rheology *r = &sim->mat[m].rheo;
         rho_min = fmin(rho_min, sim->mat[m].density);
-        nu_max = fmax(nu_max, sim->mat[m].viscosity);
+        nu_max = fmax(nu_max, ry_rheology_nu_max(r, sim->mat[m].viscosity));
+        if (r->model == RY_RHEO_OLDROYD_B && r->nu_polymer > 0)
+            elastic = fmin(elastic, sim->cfl * l0 * sqrt(r->relaxation / r->nu_polymer));
     }
     double g = 0;
     for (int d = 0; d < sim->dim; ++d) g += sim->gravity[d] * sim->gravity[d];
@@ -731,6 +972,7 @@ static ry_status mps_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     if (M->st.model != RY_ST_NONE && M->st.sigma > 0)
         t = fmin(t, sqrt(rho_min * l0 * l0 * l0 / (2 * RY_PI * M->st.sigma)));
     if (M->visc == VISC_EXPLICIT && nu_max > 0) t = fmin(t, 0.2 * l0 * l0 / nu_max);
+    t = fmin(t, elastic);
     if (!isfinite(t)) t = sim->dt_max > 0 ? sim->dt_max : sim->output_interval;
     *dt = t;
     return RY_OK;

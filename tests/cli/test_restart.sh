@@ -45,6 +45,19 @@ grep -q "restarting from .*checkpoint_0000000700.ryc (step 700" "$T/part2.log" |
     bad "restart did not name its checkpoint: $(cat "$T/part2.log")"
 same "$T/full" "$T/part" "dam break restarted at step 700"
 
+# 1b. MPS with an Oldroyd-B fluid: the polymer stress is part of the state.
+OB="$SRC/cases/mps_oldroyd_b_startup.yaml"
+OBSET="--set time.end=0.004 --set time.output_interval=0.001 --set output.vtk=true"
+# shellcheck disable=SC2086
+run obfull "$OB" $OBSET --threads 1
+[ "$rc" -eq 0 ] || bad "uninterrupted Oldroyd-B run exited $rc: $(cat "$T/obfull.log")"
+# shellcheck disable=SC2086
+run obpart "$OB" $OBSET --threads 1 --set time.max_steps=250
+# shellcheck disable=SC2086
+"$RY" run "$OB" $OBSET --threads 1 --restart "$T/obpart" > "$T/obpart2.log" 2>&1 ||
+    bad "Oldroyd-B restart failed: $(cat "$T/obpart2.log")"
+same "$T/obfull" "$T/obpart" "Oldroyd-B start-up restarted at step 250"
+
 # 2. Periodic checkpoints (every 250 steps, keep 2): restart from the older of the two, after
 # the newest was damaged (truncated).
 # shellcheck disable=SC2086

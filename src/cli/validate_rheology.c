@@ -1,0 +1,222 @@
+/* ryushi validate rheology: non-Newtonian MPS against analytic channel flows (docs/rheology.md):
+ * steady power-law and Carreau Poiseuille profiles, and the start-up of Poiseuille flow of an
+ * Oldroyd-B fluid, at 20 and 40 particles across (--quick: 20). Tables on stdout and in
+ * rheology.md, plots in rheology.png. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "ryushi/atomic_file.h"
+#include "ryushi/plot.h"
+#include "ryushi/validate.h"
+
+#define CH 1.0e-3 /* channel width of the cases [m] */
+#define MAXROWS 128
+
+static void check(const char *what, int ok, int *failures) {
+    printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
+    if (!ok) ++*failures;
+}
+
+/* Runs case_rel at n particles across into out/sub, keeping the simulation and its series. */
+static ry_status run_at(const char *root, const char *out, const char *case_rel, const char *sub,
+                        int across, ry_table *series, ry_sim *sim, ry_run_stats *stats,
+                        ry_error *err) {
+    char cpath[4096], odir[4096], spath[4200], sp[64];
+    snprintf(cpath, sizeof cpath, "%s/%s", root, case_rel);
+    snprintf(odir, sizeof odir, "%s/%s_%d", out, sub, across);
+    snprintf(sp, sizeof sp, "spacing=%.17g", CH / across);
+    const char *sets[] = {sp, "output.vtk=false"};
+    RY_TRY(ry_run_case_file(cpath, 2, sets, odir, sim, stats, err));
+    snprintf(spath, sizeof spath, "%s/series.csv", odir);
+    ry_status st = ry_table_read(series, spath, err);
+    if (st != RY_OK) ry_sim_free(sim);
+    return st;
+}
+
+typedef struct steady_case {
+    const char *name, *file, *sub;
+    double g;
+} steady_case;
+
+static double steady_ref(const steady_case *sc, const ry_rheology *r, double s) {
+    if (r->model == RY_RHEO_POWER_LAW && r->nu_min == 0)
+        return ry_power_law_poiseuille(sc->g, r->consistency, r->index, 0.5 * CH, s);
+    return ry_gnf_poiseuille(r, sc->g, 0.5 * CH, s);
+}
+
+/* A steady channel flow at one resolution: RMS and centreline errors, a row of md, and the
+ * profile into the plot panel. */
+static void steady_run(const char *root, const char *out, const steady_case *sc, int across,
+                       FILE *md, ry_plot *plot, int panel, int first, int *failures) {
+    ry_error err = {0};
+    ry_table s;
+    ry_sim sim;
+    ry_run_stats stats;
+    if (run_at(root, out, sc->file, sc->sub, across, &s, &sim, &stats, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+        return;
+    }
+    const ry_rheology *r = &sim.mat[0].rheo;
+    double y[MAXROWS], u[MAXROWS], ua[MAXROWS];
+    const double l0 = CH / across;
+    const size_t rows = ry_row_velocity(&sim, 0.0, l0, y, u, MAXROWS);
+    const double uc = steady_ref(sc, r, 0.0);
+    double s2 = 0, umax = 0, worst = 0;
+    for (size_t k = 0; k < rows; ++k) {
+        ua[k] = steady_ref(sc, r, y[k] - 0.5 * CH);
+        const double e = (u[k] - ua[k]) / uc;
+        s2 += e * e;
+        worst = fmax(worst, fabs(e));
+        umax = fmax(umax, u[k]);
+    }
+    const double rms = rows ? sqrt(s2 / rows) : NAN;
+    const double centre = umax / steady_ref(sc, r, 0.5 * l0) - 1;
+    const double pss = stats.wall_s > 0 ? (double)sim.ps.n * stats.steps / stats.wall_s : 0;
+    printf("  %-10s %3d across: u_c %.3f mm/s, centreline %+.2f %%, RMS %.2f %%, largest %.2f %% "
+           "(%ld steps, %.2e particle-steps/s)\n",
+           sc->name, across, 1e3 * uc, 100 * centre, 100 * rms, 100 * worst, stats.steps, pss);
+    if (md)
+        fprintf(md, "| %s | %d | %zu | %.3f | %+.2f %% | %.2f %% | %.2f %% | %ld |\n", sc->name,
+                across, sim.ps.n, 1e3 * uc, 100 * centre, 100 * rms, 100 * worst, stats.steps);
+    char label[64];
+    double ymm[MAXROWS], umm[MAXROWS], uamm[MAXROWS];
+    for (size_t k = 0; k < rows; ++k) {
+        ymm[k] = 1e3 * y[k];
+        umm[k] = 1e3 * u[k];
+        uamm[k] = 1e3 * ua[k];
+    }
+    if (plot) {
+        snprintf(label, sizeof label, "MPS, %d across", across);
+        ry_plot_series(plot, panel, label, rows, ymm, umm,
+                       ry_plot_style_markers(first ? RY_PLOT_MARKER_CIRCLE : RY_PLOT_MARKER_SQUARE),
+                       &err);
+        if (!first)
+            ry_plot_series(plot, panel, "analytic", rows, ymm, uamm, ry_plot_style_line(), &err);
+    }
+    char what[160];
+    snprintf(what, sizeof what, "%s, %d across: profile RMS within 3 %% of u_c", sc->name, across);
+    check(what, rms < 0.03, failures);
+    snprintf(what, sizeof what, "%s, %d across: centreline within 3 %%", sc->name, across);
+    check(what, fabs(centre) < 0.03, failures);
+    ry_sim_free(&sim);
+    ry_table_free(&s);
+}
+
+/* Oldroyd-B start-up at one resolution: the largest speed against the analytic velocity of the
+ * rows next to the centreline at every output. */
+static void startup_run(const char *root, const char *out, int across, FILE *md, ry_plot *plot,
+                        int panel, int first, int *failures) {
+    ry_error err = {0};
+    ry_table s;
+    ry_sim sim;
+    ry_run_stats stats;
+    if (run_at(root, out, "cases/mps_oldroyd_b_startup.yaml", "oldroyd_b", across, &s, &sim, &stats,
+               &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+        return;
+    }
+    const ry_material *m = &sim.mat[0];
+    const double g = sim.gravity[0], l0 = CH / across, nus = m->viscosity;
+    const double nup = m->rheo.nu_polymer, lam = m->rheo.relaxation;
+    const int ct = ry_table_col(&s, "t"), cv = ry_table_col(&s, "max_speed");
+    const size_t nr = s.nrows;
+    double *t = calloc(nr, sizeof *t), *v = calloc(nr, sizeof *v), *va = calloc(nr, sizeof *va);
+    double worst = 0, s2 = 0, peak = 0, peak_ref = 0, tpeak = 0, tpeak_ref = 0;
+    for (size_t k = 0; t && v && va && ct >= 0 && cv >= 0 && k < nr; ++k) {
+        t[k] = 1e3 * ry_table_at(&s, k, ct);
+        v[k] = 1e3 * ry_table_at(&s, k, cv);
+        va[k] = 1e3 * ry_oldroyd_b_startup(g, CH, nus, nup, lam, 0.5 * (CH - l0), 1e-3 * t[k], 400);
+        worst = fmax(worst, fabs(v[k] - va[k]));
+        s2 += (v[k] - va[k]) * (v[k] - va[k]);
+        if (v[k] > peak) peak = v[k], tpeak = t[k];
+        if (va[k] > peak_ref) peak_ref = va[k], tpeak_ref = t[k];
+    }
+    const double rms = nr ? sqrt(s2 / nr) : NAN;
+    const double pss = stats.wall_s > 0 ? (double)sim.ps.n * stats.steps / stats.wall_s : 0;
+    printf("  Oldroyd-B %3d across: peak %.2f mm/s at %.2f ms (analytic %.2f at %.2f), RMS %.2f "
+           "%%, largest %.2f %% of the peak (%ld steps, %.2e particle-steps/s)\n",
+           across, peak, tpeak, peak_ref, tpeak_ref, 100 * rms / peak_ref, 100 * worst / peak_ref,
+           stats.steps, pss);
+    if (md)
+        fprintf(md, "| %d | %zu | %.2f at %.2f ms | %.2f at %.2f ms | %.2f %% | %.2f %% | %ld |\n",
+                across, sim.ps.n, peak, tpeak, peak_ref, tpeak_ref, 100 * rms / peak_ref,
+                100 * worst / peak_ref, stats.steps);
+    if (plot && t && v && va) {
+        char label[64];
+        snprintf(label, sizeof label, "MPS, %d across", across);
+        ry_plot_series(plot, panel, label, nr, t, v,
+                       ry_plot_style_markers(first ? RY_PLOT_MARKER_CIRCLE : RY_PLOT_MARKER_SQUARE),
+                       &err);
+        if (!first) ry_plot_series(plot, panel, "analytic", nr, t, va, ry_plot_style_line(), &err);
+    }
+    char what[160];
+    snprintf(what, sizeof what, "Oldroyd-B, %d across: within 4 %% of the peak at every output",
+             across);
+    check(what, worst < 0.04 * peak_ref, failures);
+    snprintf(what, sizeof what, "Oldroyd-B, %d across: first peak within 5 %%", across);
+    check(what, fabs(peak / peak_ref - 1) < 0.05, failures);
+    free(t);
+    free(v);
+    free(va);
+    ry_sim_free(&sim);
+    ry_table_free(&s);
+}
+
+int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    const int res[2] = {20, 40};
+    const int nres = quick ? 1 : 2;
+    char mdp[4096], png[4096];
+    snprintf(mdp, sizeof mdp, "%s/rheology.md", out);
+    snprintf(png, sizeof png, "%s/rheology.png", out);
+    ry_atomic_file af = {0};
+    FILE *md = ry_atomic_open(&af, mdp, &err) == RY_OK ? af.fp : NULL;
+    ry_plot *plot = NULL;
+    if (ry_plot_new(&plot, 1, 3, 1800, 560, &err) != RY_OK) plot = NULL;
+    if (plot) {
+        ry_plot_panel(plot, 0, "Power law, n = 0.5", "y (mm)", "u (mm/s)", &err);
+        ry_plot_panel(plot, 1, "Carreau, n = 0.4", "y (mm)", "u (mm/s)", &err);
+        ry_plot_panel(plot, 2, "Oldroyd-B start-up, E = 1, beta = 0.1", "t (ms)",
+                      "centreline u (mm/s)", &err);
+    }
+    const steady_case sc[2] = {
+        {"power law", "cases/mps_power_law_poiseuille.yaml", "power_law", 6.9},
+        {"Carreau", "cases/mps_carreau_poiseuille.yaml", "carreau", 40.0}};
+    printf("Non-Newtonian channel flows, MPS (cases/mps_*_poiseuille.yaml, "
+           "cases/mps_oldroyd_b_startup.yaml)\n");
+    if (md)
+        fprintf(md, "| model | across | particles | u_c [mm/s] | centreline | RMS | largest | "
+                    "steps |\n|---|---|---|---|---|---|---|---|\n");
+    for (int c = 0; c < 2; ++c)
+        for (int k = 0; k < nres; ++k)
+            steady_run(root, out, &sc[c], res[k], md, plot, c, k == 0 && nres > 1, failures);
+    if (md)
+        fprintf(md, "\n| across | particles | peak [mm/s] | analytic [mm/s] | RMS / peak | "
+                    "largest / peak | steps |\n|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < nres; ++k)
+        startup_run(root, out, res[k], md, plot, 2, k == 0 && nres > 1, failures);
+    if (md && ry_atomic_commit(&af, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+    } else if (md) {
+        printf("  table: %s\n", mdp);
+    }
+    if (plot) {
+        ry_plot_legend(plot, 0, RY_PLOT_LEGEND_SE, &err);
+        ry_plot_legend(plot, 1, RY_PLOT_LEGEND_SE, &err);
+        if (ry_plot_write_png(plot, png, &err) != RY_OK) {
+            fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+            ++*failures;
+        } else {
+            printf("  plot: %s\n", png);
+        }
+        ry_plot_free(plot);
+    }
+    return *failures;
+}

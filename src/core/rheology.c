@@ -1,0 +1,86 @@
+/* Rheology models of a material (include/ryushi/rheology.h, docs/rheology.md). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "ryushi/rheology.h"
+
+const char *const ry_rheology_names[] = {"newtonian", "power_law", "carreau", "oldroyd_b", NULL};
+
+static ry_status key_double(ry_case *c, const char *prefix, const char *key, const double *def,
+                            double lo, double hi, double *out, ry_error *err) {
+    char k[160];
+    snprintf(k, sizeof k, "%s.rheology.%s", prefix, key);
+    return ry_case_double(c, k, def, lo, hi, out, err);
+}
+
+ry_status ry_rheology_read(ry_case *c, const char *prefix, ry_rheology *r, ry_error *err) {
+    char k[160], where[256];
+    memset(r, 0, sizeof *r);
+    snprintf(k, sizeof k, "%s.rheology.model", prefix);
+    RY_TRY(ry_case_choice(c, k, "newtonian", ry_rheology_names, &r->model, err));
+    const double zero = 0;
+    switch (r->model) {
+    case RY_RHEO_POWER_LAW:
+        RY_TRY(key_double(c, prefix, "consistency", NULL, 1e-300, INFINITY, &r->consistency, err));
+        RY_TRY(key_double(c, prefix, "index", NULL, 0.05, 3.0, &r->index, err));
+        RY_TRY(key_double(c, prefix, "viscosity_min", &zero, 0.0, INFINITY, &r->nu_min, err));
+        /* Required: at rest a shear-thinning fluid's viscosity is unbounded, and a
+         * shear-thickening one's grows without bound with the rate. */
+        RY_TRY(key_double(c, prefix, "viscosity_max", NULL, 1e-300, INFINITY, &r->nu_max, err));
+        snprintf(k, sizeof k, "%s.rheology.viscosity_max", prefix);
+        RY_CHECK(err, r->nu_max > r->nu_min, RY_ERR_INPUT,
+                 "%s: key '%s': must exceed viscosity_min (%g)",
+                 ry_case_where(c, k, where, sizeof where), k, r->nu_min);
+        break;
+    case RY_RHEO_CARREAU:
+        RY_TRY(key_double(c, prefix, "viscosity_zero", NULL, 1e-300, INFINITY, &r->nu_zero, err));
+        RY_TRY(key_double(c, prefix, "viscosity_infinity", &zero, 0.0, INFINITY, &r->nu_inf, err));
+        RY_TRY(key_double(c, prefix, "time", NULL, 0.0, INFINITY, &r->time, err));
+        RY_TRY(key_double(c, prefix, "index", NULL, 0.05, 1.0, &r->index, err));
+        break;
+    case RY_RHEO_OLDROYD_B:
+        RY_TRY(
+            key_double(c, prefix, "polymer_viscosity", NULL, 0.0, INFINITY, &r->nu_polymer, err));
+        RY_TRY(
+            key_double(c, prefix, "relaxation_time", NULL, 1e-300, INFINITY, &r->relaxation, err));
+        break;
+    default:
+        break;
+    }
+    return RY_OK;
+}
+
+int ry_rheology_generalised(const ry_rheology *r) {
+    return r->model == RY_RHEO_POWER_LAW || r->model == RY_RHEO_CARREAU;
+}
+
+double ry_rheology_nu(const ry_rheology *r, double nu_newtonian, double gd) {
+    switch (r->model) {
+    case RY_RHEO_POWER_LAW: {
+        /* k gd^(n-1), bounded; at gd = 0 the bound the exponent's sign picks. */
+        const double nu = gd > 0 ? r->consistency * pow(gd, r->index - 1.0)
+                                 : (r->index < 1   ? INFINITY
+                                    : r->index > 1 ? 0.0
+                                                   : r->consistency);
+        return fmin(fmax(nu, r->nu_min), r->nu_max);
+    }
+    case RY_RHEO_CARREAU: {
+        const double tg = r->time * gd;
+        return r->nu_inf + (r->nu_zero - r->nu_inf) * pow(1.0 + tg * tg, 0.5 * (r->index - 1.0));
+    }
+    default:
+        return nu_newtonian;
+    }
+}
+
+double ry_rheology_nu_max(const ry_rheology *r, double nu_newtonian) {
+    switch (r->model) {
+    case RY_RHEO_POWER_LAW:
+        return r->nu_max;
+    case RY_RHEO_CARREAU:
+        return fmax(r->nu_zero, r->nu_inf);
+    default:
+        return nu_newtonian;
+    }
+}

@@ -1,0 +1,163 @@
+/* Non-Newtonian MPS against analytic channel flows (docs/rheology.md): power-law and Carreau
+ * Poiseuille profiles at steady state, and the start-up of Poiseuille flow of an Oldroyd-B
+ * fluid with its velocity overshoot. The full-resolution runs are `ryushi validate rheology`. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ryushi/rheology.h"
+#include "ryushi/validate.h"
+
+#define RY_TMPDIR_PREFIX "ryushi_rheology_"
+#include "tmpdir.h"
+
+#include "run_case.h"
+
+#define H 1.0e-3  /* channel width of the cases [m] */
+#define L0 5.0e-5 /* their spacing [m] */
+
+/* The model's viscosity by hand, and the references in their Newtonian limits. */
+static void test_models_and_references(void **state) {
+    (void)state;
+    ry_rheology pl = {.model = RY_RHEO_POWER_LAW,
+                      .consistency = 1e-3,
+                      .index = 0.5,
+                      .nu_min = 1e-5,
+                      .nu_max = 1e-2};
+    assert_float_equal(ry_rheology_nu(&pl, 0, 4.0), 5e-4, 1e-15); /* 1e-3 * 4^-0.5 */
+    assert_float_equal(ry_rheology_nu(&pl, 0, 0.0), 1e-2, 1e-15); /* at rest: the bound */
+    assert_float_equal(ry_rheology_nu(&pl, 0, 1e5), 1e-5, 1e-15); /* 3.2e-6 below the bound */
+    ry_rheology ca = {
+        .model = RY_RHEO_CARREAU, .nu_zero = 1e-3, .nu_inf = 1e-5, .time = 0.5, .index = 0.5};
+    assert_float_equal(ry_rheology_nu(&ca, 0, 2.0), 1e-5 + (1e-3 - 1e-5) * pow(2.0, -0.25), 1e-15);
+    assert_float_equal(ry_rheology_nu_max(&ca, 0), 1e-3, 0);
+    ry_rheology ob = {.model = RY_RHEO_OLDROYD_B, .nu_polymer = 1e-3, .relaxation = 1.0};
+    assert_float_equal(ry_rheology_nu(&ob, 2e-4, 10.0), 2e-4, 0); /* the solvent's */
+    /* n = 1: Newtonian Poiseuille g (b^2 - s^2) / (2 nu), by both references. */
+    const double g = 2.0, nu = 1e-3, b = 0.5e-3, s = 0.2e-3, un = g * (b * b - s * s) / (2 * nu);
+    assert_float_equal(ry_power_law_poiseuille(g, nu, 1.0, b, s), un, 1e-12 * un);
+    ry_rheology newt = {.model = RY_RHEO_POWER_LAW, .consistency = nu, .index = 1.0, .nu_max = 1.0};
+    assert_float_equal(ry_gnf_poiseuille(&newt, g, b, s), un, 1e-6 * un);
+    /* Power law n = 0.5 by the general route. */
+    pl.nu_min = 0;
+    pl.nu_max = 1e30;
+    const double upl = ry_power_law_poiseuille(g, 1e-3, 0.5, b, s);
+    assert_float_equal(ry_gnf_poiseuille(&pl, g, b, s), upl, 1e-5 * upl);
+    /* Oldroyd-B: long after the start the Newtonian profile of nu_s + nu_p; early on the
+     * fluid accelerates freely (u = g t), and with nu_p = 0 the steady state is the solvent's. */
+    const double u0 = g * 4 * b * b / (8 * (1e-4 + 9e-4));
+    assert_float_equal(ry_oldroyd_b_startup(g, 2 * b, 1e-4, 9e-4, 1e-3, b, 0.2, 2000), u0,
+                       1e-4 * u0);
+    assert_float_equal(ry_oldroyd_b_startup(g, 2 * b, 1e-4, 9e-4, 1e-3, b, 1e-6, 2000), g * 1e-6,
+                       1e-3 * g * 1e-6);
+    const double us = g * 4 * b * b / (8 * 1e-4);
+    assert_float_equal(ry_oldroyd_b_startup(g, 2 * b, 1e-4, 0.0, 1e-3, b, 0.2, 2000), us,
+                       1e-4 * us);
+}
+
+/* RMS and centreline errors of the row velocities against ref(s), relative to ref(0). */
+static void profile_errors(const ry_sim *sim, double (*ref)(const void *, double), const void *ctx,
+                           double *rms, double *centre) {
+    double y[64], u[64];
+    const size_t rows = ry_row_velocity(sim, 0.0, L0, y, u, 64);
+    assert_int_equal(rows, (size_t)(H / L0 + 0.5));
+    const double uc = ref(ctx, 0.0);
+    double s2 = 0, umax = 0;
+    for (size_t r = 0; r < rows; ++r) {
+        const double e = (u[r] - ref(ctx, y[r] - 0.5 * H)) / uc;
+        s2 += e * e;
+        umax = fmax(umax, u[r]);
+    }
+    *rms = sqrt(s2 / rows);
+    /* the two middle rows lie l0/2 off the centreline */
+    *centre = umax / ref(ctx, 0.5 * L0) - 1;
+}
+
+static double power_law_ref(const void *ctx, double s) {
+    (void)ctx;
+    return ry_power_law_poiseuille(6.9, 4.47e-4, 0.5, 0.5 * H, s);
+}
+
+static double gnf_ref(const void *ctx, double s) {
+    return ry_gnf_poiseuille(ctx, 40.0, 0.5 * H, s);
+}
+
+/* A steady channel case at 20 across against ref: the row velocities within 3 % (RMS, of the
+ * centreline velocity) and the centreline within 3 %. */
+static void steady_case(const char *file, const char *sub, double (*ref)(const void *, double),
+                        int ctx_is_rheology) {
+    ry_table series;
+    ry_sim sim;
+    run_case(file, sub, 0, NULL, &series, &sim, NULL);
+    double rms, centre;
+    profile_errors(&sim, ref, ctx_is_rheology ? &sim.mat[0].rheo : NULL, &rms, &centre);
+    printf("%s: RMS %.2f %%, centreline %+.2f %%\n", sub, 100 * rms, 100 * centre);
+    assert_true(rms < 0.03);
+    assert_true(fabs(centre) < 0.03);
+    ry_sim_free(&sim);
+    ry_table_free(&series);
+}
+
+/* Power law, n = 0.5, at t = 0.1 s (about 20 viscous times at the wall); measured: RMS 2.0 %,
+ * centreline +1.6 %. */
+static void test_power_law_poiseuille(void **state) {
+    (void)state;
+    steady_case("cases/mps_power_law_poiseuille.yaml", "power_law", power_law_ref, 0);
+}
+
+/* Carreau, n = 0.4, at t = 0.03 s; measured: RMS 1.3 %, centreline +1.3 %. */
+static void test_carreau_poiseuille(void **state) {
+    (void)state;
+    steady_case("cases/mps_carreau_poiseuille.yaml", "carreau", gnf_ref, 1);
+}
+
+/* Oldroyd-B start-up (E = 1, beta = 0.1): the largest speed (the particles next to the
+ * centreline) against the analytic velocity there at every output (0.1 ms apart) to 10 ms:
+ * within 4 % of the first overshoot's peak (2.8 times the steady velocity) everywhere (measured
+ * 2.7 %, while the velocity falls fastest, 0.5-0.9 ms), and that peak within 5 % (measured
+ * 28.9 against 28.3 mm/s). */
+static void test_oldroyd_b_startup(void **state) {
+    (void)state;
+    ry_table series;
+    run_case("cases/mps_oldroyd_b_startup.yaml", "oldroyd_b", 0, NULL, &series, NULL, NULL);
+    const int ct = ry_table_col(&series, "t"), cv = ry_table_col(&series, "max_speed");
+    assert_true(ct >= 0 && cv >= 0);
+    const double us = 80.0 * H * H / (8 * 1e-3);
+    double worst = 0, peak = 0, peak_ref = 0;
+    for (size_t r = 0; r < series.nrows; ++r) {
+        const double t = ry_table_at(&series, r, ct), v = ry_table_at(&series, r, cv);
+        const double ref =
+            ry_oldroyd_b_startup(80.0, H, 1e-4, 9e-4, 1e-3, 0.5 * H - 0.5 * L0, t, 400);
+        worst = fmax(worst, fabs(v - ref));
+        if (t < 1.5e-3) {
+            peak = fmax(peak, v);
+            peak_ref = fmax(peak_ref, ref);
+        }
+    }
+    printf("Oldroyd-B: largest difference %.2f %% of the first peak; first peak %.4f against "
+           "%.4f m/s\n",
+           100 * worst / peak_ref, peak, peak_ref);
+    assert_true(peak_ref > 2.5 * us); /* the overshoot the case is about */
+    assert_true(worst < 0.04 * peak_ref);
+    assert_true(fabs(peak / peak_ref - 1) < 0.05);
+    ry_table_free(&series);
+}
+
+int main(void) {
+    const char *r = getenv("RY_SOURCE_DIR");
+    snprintf(root, sizeof root, "%s", r ? r : ".");
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_models_and_references),
+        cmocka_unit_test(test_power_law_poiseuille),
+        cmocka_unit_test(test_carreau_poiseuille),
+        cmocka_unit_test(test_oldroyd_b_startup),
+    };
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
+}
