@@ -8,7 +8,14 @@
 extern const ry_scheme_type ry_scheme_mps;
 
 /* Probes of series.csv for MPS and droplets (listed by `ryushi probes`). */
-extern const ry_probe ry_probe_width_x, ry_probe_drop_pressure, ry_probe_ppe_iterations;
+extern const ry_probe ry_probe_width_x, ry_probe_drop_pressure, ry_probe_ppe_iterations,
+    ry_probe_contact_angle;
+
+/* Contact angle [degrees] of a sessile drop shaped as a circular cap (2D: a circular segment
+ * of area A; 3D: a spherical cap of volume V) of height h on a flat wall: 2D, theta solves
+ * (1 - cos theta)^2 / (theta - sin theta cos theta) = h^2 / A (bisection); 3D,
+ * cos theta = (1 - 2 q) / (1 + q), q = pi h^3 / (3 V). NAN when h or A is not positive. */
+double ry_cap_contact_angle(int dim, double h, double size);
 
 /* Number density n0 = sum_j w(|k| l0) and lambda = sum_j |k|^2 l0^2 w / n0 (seed eq. 4 and 8)
  * of the full square (2D) or simple cubic (3D) lattice of spacing l0 with Tamai's weight of

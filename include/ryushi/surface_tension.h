@@ -36,6 +36,15 @@ typedef struct ry_surface_tension {
      * delta function's normalisation) [m] */
     double delta_sum;
     double g_top; /* that sum for the top layer alone */
+    /* Wetting, potential model: fluid-wall pairs with C wall_ratio, wall_ratio =
+     * (1 + cos theta)/2 for the contact angle theta (the Dupre work of adhesion
+     * sigma (1 + cos theta) against the work of cohesion 2 sigma); 0: walls do not attract. */
+    double wall_ratio;
+    /* CSF with walls (wetting): the contact angle [rad], NAN for none. Walls then count in the
+     * colour function, and the normal of a fluid particle beside a wall (within 1.5 spacings)
+     * is set to sin(theta) t + cos(theta) n_w (Brackbill et al. 1992): n_w the wall's normal
+     * into the fluid, t the particle's normal projected on the wall plane. */
+    double contact_angle;
 } ry_surface_tension;
 
 /* Names used in case files: "none", "csf", "potential" (NULL-terminated, indexed by model). */
@@ -57,6 +66,10 @@ double ry_st_potential_phi(double r, double l0, double re);
 double ry_st_potential_pair_sum(int dim, double l0, double re);
 /* C from 2 sigma l0^(d-1) = C sum (eq. 11; in 2D per unit depth). */
 double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
+
+/* The contact angle [degrees] whose Young relation the wall ratio of the potential model gives:
+ * cos theta = 2 wall_ratio - 1. */
+double ry_st_contact_angle(const ry_surface_tension *st);
 
 /* Adds the surface-tension acceleration to a[d][i] of every fluid particle. The neighbour list
  * of sim must hold all pairs within st->re. */

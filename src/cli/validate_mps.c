@@ -389,10 +389,78 @@ static void validate_dam_break_mps(const char *root, const char *out, int *failu
     ry_table_free(&ref);
 }
 
+/* Sessile drops (CSF with a contact angle, cases/mps_sessile_drop.yaml): the mean of the
+ * contact_angle probe over 40-60 ms against the prescribed angle, within 5 degrees; the angle
+ * against time into mps_sessile.png. */
+static void validate_sessile(const char *root, const char *out, int *failures) {
+    ry_error err = {0};
+    const double thetas[] = {30, 60, 90, 120, 150};
+    ry_plot *plot = NULL;
+    if (ry_plot_new(&plot, 1, 1, 900, 600, &err) != RY_OK) plot = NULL;
+    if (plot)
+        ry_plot_panel(plot, 0, "Sessile drop, CSF with a contact angle", "t (ms)",
+                      "contact angle (degrees)", &err);
+    printf("MPS sessile drop, CSF with a contact angle (cases/mps_sessile_drop.yaml)\n");
+    for (int k = 0; k < 5; ++k) {
+        char set[64], sub[32];
+        snprintf(set, sizeof set, "surface_tension.contact_angle=%g", thetas[k]);
+        snprintf(sub, sizeof sub, "mps_sessile_%g", thetas[k]);
+        const char *sets[] = {set, "output.vtk=false"};
+        ry_table s;
+        ry_sim sim;
+        ry_run_stats stats;
+        if (run_mps(root, out, "cases/mps_sessile_drop.yaml", sub, 2, sets, &s, &sim, &stats,
+                    &err) != RY_OK) {
+            fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+            ++*failures;
+            continue;
+        }
+        const int ct = ry_table_col(&s, "t"), ca = ry_table_col(&s, "contact_angle");
+        double sum = 0, lo = INFINITY, hi = -INFINITY;
+        int cnt = 0;
+        double *t = calloc(s.nrows, sizeof *t), *a = calloc(s.nrows, sizeof *a);
+        size_t m = 0;
+        for (size_t r = 0; r < s.nrows && ct >= 0 && ca >= 0; ++r) {
+            const double tr = ry_table_at(&s, r, ct), ar = ry_table_at(&s, r, ca);
+            if (t && a && isfinite(ar)) {
+                t[m] = 1e3 * tr;
+                a[m++] = ar;
+            }
+            if (tr < 0.04) continue;
+            sum += ar;
+            lo = fmin(lo, ar);
+            hi = fmax(hi, ar);
+            ++cnt;
+        }
+        const double mean = cnt ? sum / cnt : NAN;
+        printf(
+            "  prescribed %5.1f: settles at %6.1f (%.1f-%.1f over 40-60 ms), %ld steps, %.1f s\n",
+            thetas[k], mean, lo, hi, stats.steps, stats.wall_s);
+        if (plot && t && a) {
+            char label[48];
+            snprintf(label, sizeof label, "%g degrees", thetas[k]);
+            ry_plot_series(plot, 0, label, m, t, a, ry_plot_style_line(), &err);
+        }
+        char what[96];
+        snprintf(what, sizeof what, "sessile drop %g degrees: within 5 degrees", thetas[k]);
+        check(what, fabs(mean - thetas[k]) <= 5.0, failures);
+        free(t);
+        free(a);
+        ry_sim_free(&sim);
+        ry_table_free(&s);
+    }
+    if (plot) {
+        ry_plot_legend(plot, 0, RY_PLOT_LEGEND_SE, &err);
+        write_plot(plot, out, "mps_sessile.png", failures);
+        ry_plot_free(plot);
+    }
+}
+
 int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failures) {
     validate_hydrostatic(root, out, quick, failures);
     validate_dam_break_mps(root, out, failures);
     validate_drops(root, out, quick, failures);
     validate_rest(root, out, failures);
+    validate_sessile(root, out, failures);
     return 0;
 }

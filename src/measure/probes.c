@@ -350,6 +350,7 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &ry_probe_width_x,
                                              &ry_probe_drop_pressure,
                                              &ry_probe_ppe_iterations,
+                                             &ry_probe_contact_angle,
                                              NULL};
 
 const ry_probe *const *ry_probes(void) {

@@ -58,7 +58,7 @@ typedef struct mps {
     int f_nu, f_gd;            /* fields with rheology: viscosity [m^2/s], shear rate [1/s] */
     int f_tau[6];              /* Oldroyd-B polymer stress [Pa], components as tau_comp */
     double *vgrad;             /* velocity gradient, dim x dim per particle (Oldroyd-B) */
-    int wall_mirror;           /* walls' velocity in the viscous terms: mirrored from the fluid */
+    int wall_mode;             /* walls in the viscous terms: own velocity, mirrored, slip */
     double *wd;                /* with it: distance of each particle to the wall surface */
     ry_csr A;
     int32_t *unk; /* unknown index per particle, -1 if none */
@@ -81,7 +81,8 @@ static void rheology_explicit(ry_sim *sim, mps *M, double dt);
 static const char *const source_names[] = {"tanaka_masunaga", "number_density", NULL};
 static const char *const visc_names[] = {"explicit", "implicit", "none", NULL};
 static const char *const grad_names[] = {"corrected", "standard", NULL};
-static const char *const wall_velocity_names[] = {"own", "mirrored", NULL};
+static const char *const wall_velocity_names[] = {"own", "mirrored", "slip", NULL};
+enum { WALLV_OWN, WALLV_MIRRORED, WALLV_SLIP };
 
 void ry_mps_lattice(int dim, double l0, double re, double *n0, double *lambda) {
     const int K = (int)floor(re / l0 + 1e-9);
@@ -97,6 +98,22 @@ void ry_mps_lattice(int dim, double l0, double re, double *n0, double *lambda) {
             }
     *n0 = s;
     *lambda = s2 / s;
+}
+
+/* Wetting (docs/mps.md): surface_tension.contact_angle [degrees]. The potential model takes it
+ * as its fluid-wall coefficient, CSF as the normal at the contact line. */
+static ry_status contact_angle(ry_case *c, mps *M, ry_error *err) {
+    char where[256];
+    const char *key = "surface_tension.contact_angle";
+    RY_CHECK(err, M->st.model != RY_ST_NONE || !ry_case_has(c, key), RY_ERR_INPUT,
+             "%s: key '%s': needs a surface_tension.model",
+             ry_case_where(c, key, where, sizeof where), key);
+    if (!ry_case_has(c, key)) return RY_OK;
+    double theta;
+    RY_TRY(ry_case_double(c, key, NULL, 0.0, 180.0, &theta, err));
+    M->st.wall_ratio = 0.5 * (1.0 + cos(theta * RY_PI / 180.0));
+    if (M->st.model == RY_ST_CSF) M->st.contact_angle = theta * RY_PI / 180.0;
+    return RY_OK;
 }
 
 static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
@@ -119,8 +136,8 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_case_double(c, "scheme.compressibility", &zero, 0.0, 1.0, &M->alpha, err));
     RY_TRY(ry_case_choice(c, "scheme.viscosity", "explicit", visc_names, &M->visc, err));
     RY_TRY(ry_case_choice(c, "scheme.gradient", "corrected", grad_names, &M->grad, err));
-    RY_TRY(ry_case_choice(c, "scheme.wall_velocity", "own", wall_velocity_names, &M->wall_mirror,
-                          err));
+    RY_TRY(
+        ry_case_choice(c, "scheme.wall_velocity", "own", wall_velocity_names, &M->wall_mode, err));
     RY_TRY(ry_case_bool(c, "scheme.clamp_negative_pressure", &yes, &M->clamp, err));
     int no = 0;
     RY_TRY(ry_case_bool(c, "scheme.source_dilatation", &no, &M->dilate, err));
@@ -165,6 +182,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     rst *= l0;
     RY_TRY(ry_st_setup(&M->st, model, sim->dim, l0, rst, sigma, err));
     M->st.curvature = curv;
+    RY_TRY(contact_angle(c, M, err));
     M->re_max = fmax(fmax(M->re_g, M->re_l), model != RY_ST_NONE ? rst : 0.0);
     double lam_g;
     ry_mps_lattice(sim->dim, l0, M->re_g, &M->n0g, &lam_g);
@@ -322,7 +340,8 @@ static inline double pair_nu(const ry_sim *sim, const mps *M, size_t i, size_t j
  * to the nearest particle of the other kind (fluid for a wall, wall for a fluid particle) less
  * half a spacing, which is exact on a lattice beside a flat wall. */
 static inline double wall_beta(const ry_sim *sim, const mps *M, size_t i, size_t j) {
-    if (!M->wall_mirror || sim->ps.kind[j] == RY_KIND_FLUID) return 1.0;
+    if (M->wall_mode == WALLV_OWN || sim->ps.kind[j] == RY_KIND_FLUID) return 1.0;
+    if (M->wall_mode == WALLV_SLIP) return 0.0; /* no shear stress from the walls */
     return 1.0 + fmin(M->wd[j] / fmax(M->wd[i], 1e-3 * sim->dx), 1.5);
 }
 
@@ -910,7 +929,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     for (size_t i = 0; i < n; ++i)
         for (int d = 0; d < dim; ++d) a[d][i] = ps->kind[i] == RY_KIND_FLUID ? sim->gravity[d] : 0;
     if (!M->csf_pressure) RY_TRY(ry_st_accelerate(&M->st, sim, a, err));
-    if (M->wall_mirror) wall_distances(sim, M);
+    if (M->wall_mode == WALLV_MIRRORED) wall_distances(sim, M);
     if (M->rheo_gnf || M->rheo_ob) rheology_explicit(sim, M, dt);
     if (M->visc == VISC_EXPLICIT) viscous_explicit(sim, M);
     if (M->visc == VISC_IMPLICIT) {
@@ -1096,6 +1115,108 @@ static ry_status probe_ppe_iterations(const ry_sim *sim, double *v, ry_error *er
     return RY_OK;
 }
 
+double ry_cap_contact_angle(int dim, double h, double size) {
+    if (!(h > 0) || !(size > 0)) return NAN;
+    if (dim > 2) {
+        const double q = RY_PI * h * h * h / (3.0 * size);
+        return acos(fmax(-1.0, fmin(1.0, (1.0 - 2.0 * q) / (1.0 + q)))) * 180.0 / RY_PI;
+    }
+    const double target = h * h / size; /* rises from 0 (theta = 0) to 4/pi (theta = pi) */
+    if (target >= 4.0 / RY_PI) return 180.0;
+    double lo = 1e-9, hi = RY_PI;
+    for (int it = 0; it < 100; ++it) {
+        const double t = 0.5 * (lo + hi), c = cos(t);
+        if ((1 - c) * (1 - c) / (t - sin(t) * c) < target)
+            lo = t;
+        else
+            hi = t;
+    }
+    return 0.5 * (lo + hi) * 180.0 / RY_PI;
+}
+
+/* Sessile drop on a floor (walls below the fluid along the last axis, "up"): a circle (2D) or
+ * sphere (3D) fitted by least squares (Kasa's algebraic fit: |x|^2 + D.x + F = 0, linear in D
+ * and F) to the free-surface particles more than two spacings above the floor's surface (its
+ * top wall layer plus half a spacing); the radius is that fit's plus half a spacing (the
+ * surface layer sits half a spacing inside the surface), and cos theta = -h_c / R with h_c the
+ * centre's height above the floor. */
+static ry_status probe_contact_angle(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim, up = dim - 1, fs = ry_particles_field(ps, "free_surface");
+    *v = NAN;
+    if (fs < 0) return RY_OK;
+    double top_wall = -INFINITY;
+    for (size_t i = 0; i < ps->n; ++i)
+        if (ps->kind[i] == RY_KIND_WALL) top_wall = fmax(top_wall, ps->f[RY_F_X + up][i]);
+    if (!isfinite(top_wall)) return RY_OK;
+    const double floor = top_wall + 0.5 * sim->dx;
+    /* Only the surface within 2 equivalent radii of the fluid's centroid (not a particle thrown
+     * off). */
+    double cen[3];
+    const size_t nf = fluid_centroid(sim, cen);
+    const double vol = (double)nf * pow(sim->dx, dim);
+    const double reach = 2 * (dim == 2 ? sqrt(vol / RY_PI) : cbrt(3 * vol / (4 * RY_PI)));
+    /* Normal equations of sum (|x|^2 + D.x + F)^2 -> min over (D, F): unknowns u = (D, F). */
+    double A[4][4] = {{0}}, b[4] = {0};
+    const int nu = dim + 1;
+    size_t k = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->f[fs][i] < 0.5) continue;
+        if (ps->f[RY_F_X + up][i] < floor + 2 * sim->dx) continue;
+        double row[4], r2 = 0, e2 = 0;
+        for (int d = 0; d < dim; ++d) {
+            const double e = ps->f[RY_F_X + d][i] - cen[d];
+            e2 += e * e;
+        }
+        if (e2 > reach * reach) continue;
+        for (int d = 0; d < dim; ++d) {
+            row[d] = ps->f[RY_F_X + d][i];
+            r2 += row[d] * row[d];
+        }
+        row[dim] = 1.0;
+        for (int a = 0; a < nu; ++a) {
+            b[a] -= row[a] * r2;
+            for (int c = 0; c < nu; ++c) A[a][c] += row[a] * row[c];
+        }
+        ++k;
+    }
+    if (k < (size_t)(3 * nu)) return RY_OK;
+    /* Gaussian elimination with partial pivoting. */
+    for (int c = 0; c < nu; ++c) {
+        int p = c;
+        for (int r = c + 1; r < nu; ++r)
+            if (fabs(A[r][c]) > fabs(A[p][c])) p = r;
+        for (int q = 0; q < nu; ++q) {
+            const double t = A[c][q];
+            A[c][q] = A[p][q];
+            A[p][q] = t;
+        }
+        const double t = b[c];
+        b[c] = b[p];
+        b[p] = t;
+        if (fabs(A[c][c]) < 1e-300) return RY_OK;
+        for (int r = c + 1; r < nu; ++r) {
+            const double f = A[r][c] / A[c][c];
+            for (int q = c; q < nu; ++q) A[r][q] -= f * A[c][q];
+            b[r] -= f * b[c];
+        }
+    }
+    double u[4];
+    for (int r = nu - 1; r >= 0; --r) {
+        double s = b[r];
+        for (int q = r + 1; q < nu; ++q) s -= A[r][q] * u[q];
+        u[r] = s / A[r][r];
+    }
+    double c2 = 0;
+    for (int d = 0; d < dim; ++d) c2 += 0.25 * u[d] * u[d];
+    const double R2 = c2 - u[dim];
+    if (!(R2 > 0)) return RY_OK;
+    const double R = sqrt(R2) + 0.5 * sim->dx, hc = -0.5 * u[up] - floor;
+    *v = acos(fmax(-1.0, fmin(1.0, -hc / R))) * 180.0 / RY_PI;
+    return RY_OK;
+}
+
 const ry_probe ry_probe_width_x = {
     "width_x",
     "drop width along x through the fluid's centroid [m] (the body within 1.5 spacings of the "
@@ -1105,6 +1226,11 @@ const ry_probe ry_probe_drop_pressure = {
     "drop_pressure",
     "mean pressure of the fluid within half the equivalent radius of its centroid [Pa]",
     probe_drop_pressure};
+const ry_probe ry_probe_contact_angle = {
+    "contact_angle",
+    "sessile drop on a floor: contact angle [degrees] of a circle (sphere) fitted to the free "
+    "surface more than two spacings above the floor",
+    probe_contact_angle};
 const ry_probe ry_probe_ppe_iterations = {
     "ppe_iterations", "scheme mps: conjugate-gradient iterations of the last pressure solve",
     probe_ppe_iterations};

@@ -82,6 +82,8 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     st->l0 = l0;
     st->re = re;
     st->C = ry_st_potential_coefficient(dim, l0, re, sigma);
+    st->wall_ratio = 0.0;
+    st->contact_angle = NAN;
     st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
     return RY_OK;
 }
@@ -107,14 +109,62 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
     *count = 0;
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
         const uint32_t j = sim->nl.j[q];
-        if (ps->kind[j] != RY_KIND_FLUID) continue;
+        /* the pair's coefficient relative to C (potential model), or whether it counts (CSF:
+         * fluid, and walls as fluid where a contact angle is set) */
+        double c = 1.0;
+        if (ps->kind[j] != RY_KIND_FLUID)
+            c = ps->kind[j] != RY_KIND_WALL ? 0.0
+                : csf                       ? (isnan(st->contact_angle) ? 0.0 : 1.0)
+                                            : st->wall_ratio;
+        if (c == 0.0) continue;
         double dx[3];
         const double r2 = pair_sep(sim, i, j, dx);
         if (r2 >= re2 || r2 <= 0) continue;
         const double r = sqrt(r2);
-        const double f = csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re);
+        const double f = c * (csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re));
         *count += csf ? f : 1.0;
         for (int d = 0; d < dim; ++d) s[d] += f * dx[d] / r;
+    }
+}
+
+/* Wetting (CSF): the normal of a fluid particle with a normal and a wall particle within 1.5
+ * spacings becomes sin(theta) t + cos(theta) n_w. n_w = -sum_walls w x_ij / r, normalised,
+ * points from the wall into the fluid; t is the particle's normal less its part along n_w,
+ * normalised (it points along the wall away from the liquid). A normal along n_w (a film)
+ * has no t and is left as it is. */
+static void contact_normals(const ry_surface_tension *st, const ry_sim *sim, double *nrm) {
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const double reach2 = 2.25 * st->l0 * st->l0, re2 = st->re * st->re;
+    const double ct = cos(st->contact_angle), sn = sin(st->contact_angle);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || isnan(nrm[3 * i])) continue;
+        double nw[3] = {0, 0, 0};
+        int near = 0;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            if (ps->kind[j] != RY_KIND_WALL) continue;
+            double dx[3];
+            const double r2 = pair_sep(sim, i, j, dx);
+            if (r2 >= re2 || r2 <= 0) continue;
+            near |= r2 < reach2;
+            const double w = ry_mps_weight_tamai(sqrt(r2), st->re) / sqrt(r2);
+            for (int d = 0; d < dim; ++d) nw[d] -= w * dx[d];
+        }
+        double nn = 0;
+        for (int d = 0; d < dim; ++d) nn += nw[d] * nw[d];
+        if (!near || !(nn > 0)) continue;
+        nn = sqrt(nn);
+        double t[3] = {0, 0, 0}, dot = 0, tn = 0;
+        for (int d = 0; d < dim; ++d) dot += nrm[3 * i + d] * nw[d] / nn;
+        for (int d = 0; d < dim; ++d) {
+            t[d] = nrm[3 * i + d] - dot * nw[d] / nn;
+            tn += t[d] * t[d];
+        }
+        if (tn < 1e-6) continue;
+        tn = sqrt(tn);
+        for (int d = 0; d < dim; ++d) nrm[3 * i + d] = sn * t[d] / tn + ct * nw[d] / nn;
     }
 }
 
@@ -175,6 +225,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         if (!(gn > 0)) continue;
         for (int d = 0; d < 3; ++d) nrm[3 * i + d] = d < dim ? -g[d] / gn : 0.0;
     }
+    if (!isnan(st->contact_angle)) contact_normals(st, sim, nrm);
     if (sim->par) sim->par->sync(ms, nrm, 3);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
@@ -238,6 +289,10 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         kappa[i] = ks / ws;
     }
     if (sim->par) sim->par->sync(ms, kappa, 1);
+}
+
+double ry_st_contact_angle(const ry_surface_tension *st) {
+    return acos(fmax(-1.0, fmin(1.0, 2.0 * st->wall_ratio - 1.0))) * 180.0 / RY_PI;
 }
 
 ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],
