@@ -211,6 +211,10 @@ struct ry_sim {
     const ry_probe **probes;
     int nprofiles;
     ry_profile *profiles;
+    /* Case section `droplet` (the droplet_* probes): the material whose droplet hangs from a
+     * nozzle or catheter (-1: none) and the height of the tip along the vertical (last) axis. */
+    int droplet_material;
+    double droplet_tip;
 
     /* output */
     char *out_dir;

@@ -116,9 +116,25 @@ static ry_status read_domain(ry_sim *sim, ry_case *c, ry_error *err) {
     return RY_OK;
 }
 
+/* The `droplet` section: material (name) and tip (height along the last axis). */
+static ry_status read_droplet(ry_sim *sim, ry_case *c, ry_error *err) {
+    sim->droplet_material = -1;
+    if (!ry_case_has(c, "droplet")) return RY_OK;
+    const char *name;
+    char where[256];
+    RY_TRY(ry_case_string(c, "droplet.material", NULL, &name, err));
+    for (int m = 0; m < sim->nmat; ++m)
+        if (strcmp(sim->mat[m].name, name) == 0) sim->droplet_material = m;
+    RY_CHECK(err, sim->droplet_material >= 0, RY_ERR_INPUT,
+             "%s: key 'droplet.material': no material named '%s'",
+             ry_case_where(c, "droplet.material", where, sizeof where), name);
+    return ry_case_double(c, "droplet.tip", NULL, -INFINITY, INFINITY, &sim->droplet_tip, err);
+}
+
 static ry_status read_probes(ry_sim *sim, ry_case *c, ry_error *err) {
     size_t n;
     char k[64];
+    RY_TRY(read_droplet(sim, c, err));
     RY_TRY(ry_case_count(c, "measure", &n, err));
     const ry_probe *const *all = ry_probes();
     int count = 0;

@@ -139,6 +139,133 @@ static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
     return RY_OK;
 }
 
+/* Droplet at a nozzle (case section `droplet`: material and tip height along the last axis,
+ * "up"): the particles of that material (fluid) form bodies, two particles being connected
+ * when closer than 1.5 spacings (union-find over a cell search of its own). The attached body
+ * is the union of the bodies that reach the nozzle (a particle at or above the tip). Values:
+ * [0] length: the tip less the attached body's lowest point (its lowest particle less half a
+ * spacing), 0 when nothing hangs below the tip; [1] width: the largest horizontal extent of the
+ * attached body below the tip plus one spacing (0 if none); [2] length / width (NAN if no width);
+ * [3] detached: 1 when a body of at least 10 particles lies wholly below the tip, else 0. */
+static uint32_t uf_find(uint32_t *parent, uint32_t a) {
+    while (parent[a] != a) {
+        parent[a] = parent[parent[a]];
+        a = parent[a];
+    }
+    return a;
+}
+
+static ry_status droplet_measure(const ry_sim *sim, double out[4], ry_error *err) {
+    RY_CHECK(err, sim->droplet_material >= 0, RY_ERR_INPUT,
+             "the droplet measurements need the case section 'droplet' (material, tip)");
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int up = sim->dim - 1, mat = sim->droplet_material;
+    const double tip = sim->droplet_tip, r2max = 2.25 * sim->dx * sim->dx;
+    uint32_t *parent = malloc((n + 1) * sizeof *parent);
+    uint8_t *flags = calloc(n + 1, 1); /* per root: 1 reaches the nozzle */
+    size_t *count = calloc(n + 1, sizeof *count);
+    if (!parent || !flags || !count) {
+        free(parent);
+        free(flags);
+        free(count);
+        return ry_error_set(err, RY_ERR_NOMEM, "out of memory (droplet measurements)");
+    }
+    ry_cell_list cl;
+    const double *x[3];
+    int per[3];
+    ry_status st = current_cells(sim, 1.5 * sim->dx, &cl, x, per, err);
+    if (st != RY_OK) {
+        free(parent);
+        free(flags);
+        free(count);
+        return st;
+    }
+    for (size_t i = 0; i < n; ++i) parent[i] = (uint32_t)i;
+#define IN_DROP(i) (ps->kind[i] == RY_KIND_FLUID && ps->material[i] == mat)
+    for (size_t i = 0; i < n; ++i) {
+        if (!IN_DROP(i)) continue;
+        size_t cells[27];
+        const int nc = ry_cells_neighbours(&cl, per, cl.cell_of[i], cells);
+        for (int c = 0; c < nc; ++c)
+            for (size_t q = cl.start[cells[c]]; q < cl.start[cells[c] + 1]; ++q) {
+                const uint32_t j = cl.order[q];
+                if (j <= i || !IN_DROP(j)) continue;
+                double dx[3] = {0, 0, 0}, r2 = 0;
+                for (int d = 0; d < sim->dim; ++d) dx[d] = x[d][i] - x[d][j];
+                ry_box_min_image(&sim->box, dx);
+                for (int d = 0; d < sim->dim; ++d) r2 += dx[d] * dx[d];
+                if (r2 < r2max) {
+                    const uint32_t a = uf_find(parent, (uint32_t)i), b = uf_find(parent, j);
+                    if (a != b) parent[a] = b;
+                }
+            }
+    }
+    ry_cells_free(&cl);
+    for (size_t i = 0; i < n; ++i)
+        if (IN_DROP(i)) {
+            const uint32_t r = uf_find(parent, (uint32_t)i);
+            count[r]++;
+            if (x[up][i] >= tip) flags[r] = 1;
+        }
+    double low = INFINITY, lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    int detached = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (!IN_DROP(i)) continue;
+        const uint32_t r = uf_find(parent, (uint32_t)i);
+        if (!flags[r]) {
+            detached |= count[r] >= 10;
+            continue;
+        }
+        if (x[up][i] >= tip) continue;
+        low = fmin(low, x[up][i]);
+        for (int d = 0; d < up; ++d) {
+            lo[d] = fmin(lo[d], x[d][i]);
+            hi[d] = fmax(hi[d], x[d][i]);
+        }
+    }
+#undef IN_DROP
+    free(parent);
+    free(flags);
+    free(count);
+    double width = 0;
+    for (int d = 0; d < up; ++d)
+        if (hi[d] >= lo[d]) width = fmax(width, hi[d] - lo[d] + sim->dx);
+    out[0] = isfinite(low) ? fmax(tip - (low - 0.5 * sim->dx), 0.0) : 0.0;
+    out[1] = width;
+    out[2] = width > 0 ? out[0] / width : NAN;
+    out[3] = detached;
+    return RY_OK;
+}
+
+static ry_status probe_droplet_length(const ry_sim *sim, double *v, ry_error *err) {
+    double o[4];
+    RY_TRY(droplet_measure(sim, o, err));
+    *v = o[0];
+    return RY_OK;
+}
+
+static ry_status probe_droplet_width(const ry_sim *sim, double *v, ry_error *err) {
+    double o[4];
+    RY_TRY(droplet_measure(sim, o, err));
+    *v = o[1];
+    return RY_OK;
+}
+
+static ry_status probe_droplet_aspect(const ry_sim *sim, double *v, ry_error *err) {
+    double o[4];
+    RY_TRY(droplet_measure(sim, o, err));
+    *v = o[2];
+    return RY_OK;
+}
+
+static ry_status probe_droplet_detached(const ry_sim *sim, double *v, ry_error *err) {
+    double o[4];
+    RY_TRY(droplet_measure(sim, o, err));
+    *v = o[3];
+    return RY_OK;
+}
+
 static ry_status probe_inflow(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
     *v = ry_open_volume(sim, RY_OPEN_INLET);
@@ -327,6 +454,21 @@ static const ry_probe p_interface = {
     "2D, two fluids in a box one wavelength wide: amplitude of the interface mode "
     "cos(2 pi x / width) [m]",
     probe_interface_amplitude};
+static const ry_probe p_droplet_length = {
+    "droplet_length",
+    "section droplet: vertical extent of the droplet attached to the nozzle below its tip [m]",
+    probe_droplet_length};
+static const ry_probe p_droplet_width = {
+    "droplet_width", "section droplet: largest horizontal extent of that droplet [m]",
+    probe_droplet_width};
+static const ry_probe p_droplet_aspect = {
+    "droplet_aspect", "section droplet: droplet length / width", probe_droplet_aspect};
+static const ry_probe p_droplet_detached = {
+    "droplet_detached",
+    "section droplet: 1 once a body of the material (10 particles or more) lies wholly below "
+    "the tip, disconnected from the nozzle; else 0",
+    probe_droplet_detached};
+
 static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_filled,
                                              &p_oil_wall,
@@ -351,6 +493,10 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &ry_probe_drop_pressure,
                                              &ry_probe_ppe_iterations,
                                              &ry_probe_contact_angle,
+                                             &p_droplet_length,
+                                             &p_droplet_width,
+                                             &p_droplet_aspect,
+                                             &p_droplet_detached,
                                              NULL};
 
 const ry_probe *const *ry_probes(void) {

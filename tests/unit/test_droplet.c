@@ -1,0 +1,96 @@
+/* The droplet measurements (case section `droplet`): length, width and aspect ratio of the body
+ * of a material attached to a nozzle, and its detachment, on particle sets built by hand. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ryushi/sim.h"
+
+#define RY_TMPDIR_PREFIX "ryushi_droplet_"
+#include "tmpdir.h"
+
+/* A column of embolic liquid in a nozzle (x 0..0.4 mm, y 1..2 mm) and a droplet hanging below
+ * the tip (y = 1 mm): x -0.2..0.6 mm, y 0.4..1 mm, spacing 0.1 mm, in water. */
+static ry_status setup(ry_sim *sim, ry_case **c, int with_section, ry_error *err) {
+    char text[2048];
+    snprintf(text, sizeof text,
+             "dimension: 2\nspacing: 1.0e-4\n"
+             "materials: [{name: water, density: 1000}, {name: embolic, density: 1182}]\n"
+             "bodies:\n"
+             "  - {type: box, lo: [0, 1.0e-3], hi: [4.0e-4, 2.0e-3], material: embolic}\n"
+             "  - {type: box, lo: [-2.0e-4, 4.0e-4], hi: [6.0e-4, 1.0e-3], material: embolic}\n"
+             "  - {type: box, lo: [-1.0e-3, -1.0e-3], hi: [1.5e-3, 4.0e-4], material: water}\n"
+             "domain: {lo: [-3.0e-3, -3.0e-3], hi: [3.0e-3, 3.0e-3]}\n"
+             "scheme: {name: static}\n"
+             "time: {end: 0.1}\n"
+             "output: {vtk: false}\n%s",
+             with_section ? "droplet: {material: embolic, tip: 1.0e-3}\n" : "");
+    memset(sim, 0, sizeof *sim);
+    RY_TRY(ry_case_load_string(c, "droplet.yaml", text, err));
+    return ry_sim_setup(sim, *c, tmpdir, err);
+}
+
+static double eval(const ry_sim *sim, const char *name) {
+    ry_error err = {0};
+    for (const ry_probe *const *p = ry_probes(); *p; ++p)
+        if (strcmp((*p)->name, name) == 0) {
+            double v = -1;
+            assert_int_equal((*p)->eval(sim, &v, &err), RY_OK);
+            return v;
+        }
+    fail_msg("no probe %s", name);
+    return NAN;
+}
+
+static void test_attached_and_detached(void **state) {
+    (void)state;
+    ry_sim sim;
+    ry_case *c = NULL;
+    ry_error err = {0};
+    assert_int_equal(setup(&sim, &c, 1, &err), RY_OK);
+    /* lowest particle at y = 0.45 mm: length 1 - 0.4 = 0.6 mm; x from -0.15 to 0.55 mm: width
+     * 0.7 + 0.1 = 0.8 mm. The water below does not count. */
+    assert_float_equal(eval(&sim, "droplet_length"), 6.0e-4, 1e-12);
+    assert_float_equal(eval(&sim, "droplet_width"), 8.0e-4, 1e-12);
+    assert_float_equal(eval(&sim, "droplet_aspect"), 0.75, 1e-9);
+    assert_true(eval(&sim, "droplet_detached") == 0);
+    /* The droplet moved down by three spacings: it is cut off from the nozzle. */
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.material[i] == 1 && sim.ps.f[RY_F_Y][i] < 1.0e-3) sim.ps.f[RY_F_Y][i] -= 3e-4;
+    assert_true(eval(&sim, "droplet_detached") == 1);
+    assert_float_equal(eval(&sim, "droplet_length"), 0.0, 0);
+    assert_float_equal(eval(&sim, "droplet_width"), 0.0, 0);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
+static void test_needs_the_section(void **state) {
+    (void)state;
+    ry_sim sim;
+    ry_case *c = NULL;
+    ry_error err = {0};
+    assert_int_equal(setup(&sim, &c, 0, &err), RY_OK);
+    for (const ry_probe *const *p = ry_probes(); *p; ++p)
+        if (strcmp((*p)->name, "droplet_length") == 0) {
+            double v;
+            assert_int_equal((*p)->eval(&sim, &v, &err), RY_ERR_INPUT);
+            assert_non_null(strstr(err.msg, "'droplet'"));
+        }
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_attached_and_detached),
+        cmocka_unit_test(test_needs_the_section),
+    };
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
+}
