@@ -195,6 +195,14 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_particles_add_field(ps, "number_density", "1", -1, RY_FIELD_OUTPUT, &M->f_nd, err));
     RY_TRY(ry_particles_add_field(ps, "free_surface", "1", -1, RY_FIELD_OUTPUT, &M->f_surf, err));
     RY_TRY(rheology_init(sim, M, err));
+    for (int q = 0; q < sim->nopen; ++q) {
+        char k[64], where[256];
+        snprintf(k, sizeof k, "open_boundaries[%d].type", q);
+        RY_CHECK(err, sim->open[q].type == RY_OPEN_INLET, RY_ERR_INPUT,
+                 "%s: key '%s': outlets are not available with scheme mps (a free surface lets the "
+                 "fluid out)",
+                 ry_case_where(c, k, where, sizeof where), k);
+    }
     for (size_t i = 0; i < ps->n; ++i) {
         ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
         ps->f[RY_F_P][i] = 0;
@@ -956,6 +964,12 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
             sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
         }
     collisions(sim, M, dt);
+    /* Inflow buffer particles (open_boundaries) move with their prescribed velocity; in the
+     * pressure and viscous terms they are walls with that velocity, and ry_open_update turns
+     * those past the zone into fluid. */
+    for (size_t i = 0; i < ps->n; ++i)
+        if (ps->kind[i] == RY_KIND_INLET)
+            for (int d = 0; d < dim; ++d) ps->f[RY_F_X + d][i] += dt * ps->f[RY_F_VX + d][i];
     wrap_periodic(sim);
     M->steps++;
     return RY_OK;
@@ -968,7 +982,9 @@ static ry_status mps_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     const double l0 = sim->dx;
     double v2 = 0, rho_min = INFINITY, nu_max = 0;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID || ry_sim_is_halo(sim, i)) continue;
+        if ((ps->kind[i] != RY_KIND_FLUID && ps->kind[i] != RY_KIND_INLET) ||
+            ry_sim_is_halo(sim, i))
+            continue;
         double s = 0;
         for (int d = 0; d < sim->dim; ++d) s += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
         v2 = fmax(v2, s);

@@ -111,8 +111,8 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
         const uint32_t j = sim->nl.j[q];
         /* the pair's coefficient relative to C (potential model), or whether it counts (CSF:
          * fluid, and walls as fluid where a contact angle is set) */
-        double c = 1.0;
-        if (ps->kind[j] != RY_KIND_FLUID)
+        double c = 1.0; /* inflow buffer particles are fluid about to enter */
+        if (ps->kind[j] != RY_KIND_FLUID && ps->kind[j] != RY_KIND_INLET)
             c = ps->kind[j] != RY_KIND_WALL ? 0.0
                 : csf                       ? (isnan(st->contact_angle) ? 0.0 : 1.0)
                                             : st->wall_ratio;
