@@ -40,6 +40,9 @@ typedef struct ry_surface_tension {
      * (1 + cos theta)/2 for the contact angle theta (the Dupre work of adhesion
      * sigma (1 + cos theta) against the work of cohesion 2 sigma); 0: walls do not attract. */
     double wall_ratio;
+    /* Two liquids, potential model: pairs of different fluid materials with C cross_ratio,
+     * cross_ratio = 1 - sigma_ab / (2 sigma) (1: the liquids mix). */
+    double cross_ratio;
     /* CSF with walls (wetting): the contact angle [rad], NAN for none. Walls then count in the
      * colour function, and the normal of a fluid particle beside a wall (within 1.5 spacings)
      * is set to sin(theta) t + cos(theta) n_w (Brackbill et al. 1992): n_w the wall's normal

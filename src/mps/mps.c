@@ -116,6 +116,22 @@ static ry_status contact_angle(ry_case *c, mps *M, ry_error *err) {
     return RY_OK;
 }
 
+/* Two liquids, potential model: surface_tension.interfacial_sigma sigma_ab. By the Dupre
+ * relation the pairs of two different liquids do the work W_ab = 2 sigma - sigma_ab, the
+ * coefficient C (1 - sigma_ab / (2 sigma)) (docs/mps.md, "Two liquids"). */
+static ry_status interfacial(ry_case *c, mps *M, ry_error *err) {
+    char where[256];
+    const char *key = "surface_tension.interfacial_sigma";
+    if (!ry_case_has(c, key)) return RY_OK;
+    RY_CHECK(err, M->st.model == RY_ST_POTENTIAL, RY_ERR_INPUT,
+             "%s: key '%s': needs surface_tension.model potential",
+             ry_case_where(c, key, where, sizeof where), key);
+    double sab;
+    RY_TRY(ry_case_double(c, key, NULL, 0.0, 2.0 * M->st.sigma, &sab, err));
+    M->st.cross_ratio = 1.0 - sab / (2.0 * M->st.sigma);
+    return RY_OK;
+}
+
 static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
     mps *M = calloc(1, sizeof *M);
     RY_CHECK(err, M != NULL, RY_ERR_NOMEM, "out of memory");
@@ -183,6 +199,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_st_setup(&M->st, model, sim->dim, l0, rst, sigma, err));
     M->st.curvature = curv;
     RY_TRY(contact_angle(c, M, err));
+    RY_TRY(interfacial(c, M, err));
     M->re_max = fmax(fmax(M->re_g, M->re_l), model != RY_ST_NONE ? rst : 0.0);
     double lam_g;
     ry_mps_lattice(sim->dim, l0, M->re_g, &M->n0g, &lam_g);
@@ -1043,17 +1060,21 @@ long ry_mps_total_iterations(const ry_sim *sim) {
 /* Probes. */
 
 /* Centroid of the fluid particles; returns their number. */
-static size_t fluid_centroid(const ry_sim *sim, double *c) {
+static size_t fluid_centroid_of(const ry_sim *sim, int mat, double *c) {
     const ry_particles *ps = &sim->ps;
     size_t nf = 0;
     c[0] = c[1] = c[2] = 0;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || (mat >= 0 && ps->material[i] != mat)) continue;
         for (int d = 0; d < sim->dim; ++d) c[d] += ps->f[RY_F_X + d][i];
         ++nf;
     }
     for (int d = 0; d < sim->dim && nf; ++d) c[d] /= (double)nf;
     return nf;
+}
+
+static size_t fluid_centroid(const ry_sim *sim, double *c) {
+    return fluid_centroid_of(sim, -1, c);
 }
 
 static int cmp_double(const void *a, const void *b) {
@@ -1065,17 +1086,17 @@ static int cmp_double(const void *a, const void *b) {
  * x axis through the centroid, sorted by x; from the one nearest the centroid the body extends
  * while neighbours are at most 3 spacings apart (particles thrown off do not count); the width
  * is the extent of that body plus one spacing. */
-static ry_status probe_width_x(const ry_sim *sim, double *v, ry_error *err) {
+static ry_status width_x_of(const ry_sim *sim, int mat, double *v, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     double c[3];
     *v = NAN;
-    if (fluid_centroid(sim, c) == 0) return RY_OK;
+    if (fluid_centroid_of(sim, mat, c) == 0) return RY_OK;
     double *xs = malloc((ps->n + 1) * sizeof *xs);
     RY_CHECK(err, xs != NULL, RY_ERR_NOMEM, "out of memory (width_x)");
     size_t k = 0;
     const double band = 1.5 * sim->dx;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || (mat >= 0 && ps->material[i] != mat)) continue;
         int in = 1;
         for (int d = 1; d < sim->dim; ++d) in &= fabs(ps->f[RY_F_X + d][i] - c[d]) < band;
         if (in) xs[k++] = ps->f[RY_F_X][i];
@@ -1092,6 +1113,17 @@ static ry_status probe_width_x(const ry_sim *sim, double *v, ry_error *err) {
     }
     free(xs);
     return RY_OK;
+}
+
+static ry_status probe_width_x(const ry_sim *sim, double *v, ry_error *err) {
+    return width_x_of(sim, -1, v, err);
+}
+
+/* The same for the particles of the second material (a drop inside another liquid). */
+static ry_status probe_width_x_second(const ry_sim *sim, double *v, ry_error *err) {
+    RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
+             "measurement 'width_x_second' needs two materials (it measures the second)");
+    return width_x_of(sim, 1, v, err);
 }
 
 /* Mean pressure of the fluid particles within half the equivalent radius of the fluid's
@@ -1238,6 +1270,10 @@ const ry_probe ry_probe_width_x = {
     "drop width along x through the fluid's centroid [m] (the body within 1.5 spacings of the "
     "axis, particles thrown off left out, plus one spacing)",
     probe_width_x};
+const ry_probe ry_probe_width_x_second = {
+    "width_x_second",
+    "width along x through its centroid of the second material's body (as width_x) [m]",
+    probe_width_x_second};
 const ry_probe ry_probe_drop_pressure = {
     "drop_pressure",
     "mean pressure of the fluid within half the equivalent radius of its centroid [Pa]",

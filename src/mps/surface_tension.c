@@ -83,6 +83,7 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     st->re = re;
     st->C = ry_st_potential_coefficient(dim, l0, re, sigma);
     st->wall_ratio = 0.0;
+    st->cross_ratio = 1.0;
     st->contact_angle = NAN;
     st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
     return RY_OK;
@@ -116,6 +117,8 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
             c = ps->kind[j] != RY_KIND_WALL ? 0.0
                 : csf                       ? (isnan(st->contact_angle) ? 0.0 : 1.0)
                                             : st->wall_ratio;
+        else if (!csf && ps->material[j] != ps->material[i])
+            c = st->cross_ratio;
         if (c == 0.0) continue;
         double dx[3];
         const double r2 = pair_sep(sim, i, j, dx);
