@@ -70,10 +70,6 @@ double ry_st_potential_pair_sum(int dim, double l0, double re);
 /* C from 2 sigma l0^(d-1) = C sum (eq. 11; in 2D per unit depth). */
 double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
 
-/* The contact angle [degrees] whose Young relation the wall ratio of the potential model gives:
- * cos theta = 2 wall_ratio - 1. */
-double ry_st_contact_angle(const ry_surface_tension *st);
-
 /* Adds the surface-tension acceleration to a[d][i] of every fluid particle. The neighbour list
  * of sim must hold all pairs within st->re. */
 ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],

@@ -49,6 +49,9 @@ ry_oscillation ry_series_oscillation(const ry_table *series, const char *name);
 
 /* Largest value of a column over the rows with t >= t0; NAN when absent. */
 double ry_column_max_from(const ry_table *series, const char *name, double t0);
+/* Mean of a column over the rows with t >= t0 (NAN when there is none); *rows receives their
+ * number (may be NULL). */
+double ry_column_mean_from(const ry_table *series, const char *name, double t0, int *rows);
 
 /* Static drop: mean pressure of the fluid particles within r_in of centre minus that of the
  * fluid particles farther than r_out (2D: x, y; 3D: x, y, z). NAN when either set is empty. */

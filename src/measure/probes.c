@@ -238,32 +238,24 @@ static ry_status droplet_measure(const ry_sim *sim, double out[4], ry_error *err
     return RY_OK;
 }
 
+/* One of droplet_measure's values. */
+static ry_status droplet_value(const ry_sim *sim, int k, double *v, ry_error *err) {
+    double o[4];
+    RY_TRY(droplet_measure(sim, o, err));
+    *v = o[k];
+    return RY_OK;
+}
 static ry_status probe_droplet_length(const ry_sim *sim, double *v, ry_error *err) {
-    double o[4];
-    RY_TRY(droplet_measure(sim, o, err));
-    *v = o[0];
-    return RY_OK;
+    return droplet_value(sim, 0, v, err);
 }
-
 static ry_status probe_droplet_width(const ry_sim *sim, double *v, ry_error *err) {
-    double o[4];
-    RY_TRY(droplet_measure(sim, o, err));
-    *v = o[1];
-    return RY_OK;
+    return droplet_value(sim, 1, v, err);
 }
-
 static ry_status probe_droplet_aspect(const ry_sim *sim, double *v, ry_error *err) {
-    double o[4];
-    RY_TRY(droplet_measure(sim, o, err));
-    *v = o[2];
-    return RY_OK;
+    return droplet_value(sim, 2, v, err);
 }
-
 static ry_status probe_droplet_detached(const ry_sim *sim, double *v, ry_error *err) {
-    double o[4];
-    RY_TRY(droplet_measure(sim, o, err));
-    *v = o[3];
-    return RY_OK;
+    return droplet_value(sim, 3, v, err);
 }
 
 static ry_status probe_inflow(const ry_sim *sim, double *v, ry_error *err) {

@@ -265,10 +265,15 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         vg = realloc(M->vgrad, 9 * c * sizeof *vg);
         if (vg) M->vgrad = vg;
     }
-    double *wv = realloc(M->wd, c * sizeof *wv);
-    if (wv) M->wd = wv;
-    RY_CHECK(err, u && r && b && x && pd && o && t && wv && (vg || !M->rheo_ob), RY_ERR_NOMEM,
-             "out of memory (MPS work arrays)");
+    double *wv = M->wd;
+    if (M->wall_mode == WALLV_MIRRORED) {
+        wv = realloc(M->wd, c * sizeof *wv);
+        if (wv) M->wd = wv;
+    }
+    RY_CHECK(err,
+             u && r && b && x && pd && o && t && (vg || !M->rheo_ob) &&
+                 (wv || M->wall_mode != WALLV_MIRRORED),
+             RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
 }
@@ -417,8 +422,9 @@ static ry_status rheology_init(ry_sim *sim, mps *M, ry_error *err) {
     return RY_OK;
 }
 
-/* Corrected (least-squares) gradient at particle i of the dim-vector or scalar fields
- * val(j, c), c < nc, over the neighbours within re_g that `use` accepts: grad[c][b] =
+/* Corrected (least-squares) gradient at particle i of the fields val(i, j, c), c < nc (the
+ * value of j as seen from i), over the neighbours within re_g (fluid ones only with
+ * fluid_only): grad[c][b] =
  * d val_c / d x_b, exact for linear fields however one-sided the neighbourhood. Returns 0 when
  * the moment matrix is singular (too few neighbours); grad is then zero. */
 typedef double (*grad_value_fn)(const ry_sim *sim, const mps *M, size_t i, size_t j, int c);
@@ -463,10 +469,11 @@ static double tau_value(const ry_sim *sim, const mps *M, size_t i, size_t j, int
 }
 
 /* At x^n: the velocity gradient L (L[a][b] = du_a/dx_b, over fluid and wall neighbours, walls
- * with their own velocity), the shear rate sqrt(2 D:D) and the viscosity it gives; with
- * Oldroyd-B the acceleration div(tau)/rho (tau's gradient over the fluid neighbours) and the
- * stress at t + dt, tau' = (tau + dt (L tau + tau L^T + 2 rho nu_p D / lambda)) / (1 + dt /
- * lambda): the upper-convected terms explicit, the relaxation implicit (stable for any dt). */
+ * with the velocity the viscous terms give them, wall_beta), the shear rate sqrt(2 D:D) and the
+ * viscosity it gives; with Oldroyd-B the acceleration div(tau)/rho (tau's gradient over the fluid
+ * neighbours) and the stress at t + dt, tau' = (tau + dt (L tau + tau L^T + 2 rho nu_p D / lambda))
+ * / (1 + dt / lambda): the upper-convected terms explicit, the relaxation implicit (stable for any
+ * dt). */
 static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim, nt = tau_count(dim);

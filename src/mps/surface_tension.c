@@ -99,6 +99,19 @@ static double pair_sep(const ry_sim *sim, size_t i, uint32_t j, double dx[3]) {
     return r2;
 }
 
+/* The pair (i, j)'s coefficient in st_sums, relative to C for the potential model; for CSF
+ * whether j counts in the colour function (1 or 0). Inflow buffer particles are fluid about to
+ * enter; walls count in CSF as liquid where a contact angle is set, and attract in the
+ * potential model with wall_ratio; two different liquids attract with cross_ratio. */
+static double pair_coefficient(const ry_surface_tension *st, const ry_particles *ps, size_t i,
+                               uint32_t j, int csf) {
+    if (ps->kind[j] == RY_KIND_FLUID || ps->kind[j] == RY_KIND_INLET)
+        return !csf && ps->material[j] != ps->material[i] ? st->cross_ratio : 1.0;
+    if (ps->kind[j] != RY_KIND_WALL) return 0.0;
+    if (csf) return isnan(st->contact_angle) ? 0.0 : 1.0;
+    return st->wall_ratio;
+}
+
 /* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai
  * weight) or the potential force sum_j f(r) (x_j - x_i)/r; *count receives the neighbours. */
 static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
@@ -110,15 +123,7 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
     *count = 0;
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
         const uint32_t j = sim->nl.j[q];
-        /* the pair's coefficient relative to C (potential model), or whether it counts (CSF:
-         * fluid, and walls as fluid where a contact angle is set) */
-        double c = 1.0; /* inflow buffer particles are fluid about to enter */
-        if (ps->kind[j] != RY_KIND_FLUID && ps->kind[j] != RY_KIND_INLET)
-            c = ps->kind[j] != RY_KIND_WALL ? 0.0
-                : csf                       ? (isnan(st->contact_angle) ? 0.0 : 1.0)
-                                            : st->wall_ratio;
-        else if (!csf && ps->material[j] != ps->material[i])
-            c = st->cross_ratio;
+        const double c = pair_coefficient(st, ps, i, j, csf);
         if (c == 0.0) continue;
         double dx[3];
         const double r2 = pair_sep(sim, i, j, dx);
@@ -292,10 +297,6 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         kappa[i] = ks / ws;
     }
     if (sim->par) sim->par->sync(ms, kappa, 1);
-}
-
-double ry_st_contact_angle(const ry_surface_tension *st) {
-    return acos(fmax(-1.0, fmin(1.0, 2.0 * st->wall_ratio - 1.0))) * 180.0 / RY_PI;
 }
 
 ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],

@@ -169,17 +169,11 @@ static void sessile(double theta) {
     snprintf(sub, sizeof sub, "sessile_%g", theta);
     ry_table s;
     run("cases/mps_sessile_drop.yaml", sub, 1, sets, &s, NULL);
-    const int ct = ry_table_col(&s, "t"), ca = ry_table_col(&s, "contact_angle");
-    double sum = 0;
-    int cnt = 0;
-    for (size_t r = 0; r < s.nrows; ++r)
-        if (ry_table_at(&s, r, ct) >= 0.04) {
-            sum += ry_table_at(&s, r, ca);
-            ++cnt;
-        }
+    int cnt;
+    const double mean = ry_column_mean_from(&s, "contact_angle", 0.04, &cnt);
     assert_true(cnt >= 10);
-    printf("sessile drop, contact angle %g: settles at %.1f degrees\n", theta, sum / cnt);
-    assert_true(fabs(sum / cnt - theta) <= 5.0);
+    printf("sessile drop, contact angle %g: settles at %.1f degrees\n", theta, mean);
+    assert_true(fabs(mean - theta) <= 5.0);
     ry_table_free(&s);
 }
 
@@ -246,21 +240,15 @@ static void test_two_liquid_drop(void **state) {
     const double R = sqrt(4e-6 / RY_PI_T), sigma = 0.0728;
     const double T = 2 * RY_PI_T / sqrt(4 * 15 * sigma / (2000 * R * R * R));
     const ry_drop_periods d = ry_drop_periods_measure(&s, "width_x_second");
-    const int ct = ry_table_col(&s, "t"), cw = ry_table_col(&s, "width_x_second");
-    double wsum = 0;
-    int cnt = 0;
-    for (size_t r = 0; r < s.nrows; ++r)
-        if (ry_table_at(&s, r, ct) >= 0.008) {
-            wsum += ry_table_at(&s, r, cw);
-            ++cnt;
-        }
+    int cnt;
+    const double wmean = ry_column_mean_from(&s, "width_x_second", 0.008, &cnt);
     assert_true(cnt >= 10);
     printf("two liquids: first maximum at %.2f ms (T/2 = %.2f ms, %+.1f %%), mean width late "
            "%.3f mm (circle %.3f mm, %+.1f %%)\n",
-           1e3 * d.half, 0.5e3 * T, 100 * (d.half / (0.5 * T) - 1), 1e3 * wsum / cnt, 2e3 * R,
-           100 * (wsum / cnt / (2 * R) - 1));
+           1e3 * d.half, 0.5e3 * T, 100 * (d.half / (0.5 * T) - 1), 1e3 * wmean, 2e3 * R,
+           100 * (wmean / (2 * R) - 1));
     assert_true(fabs(d.half / (0.5 * T) - 1) <= 0.15);
-    assert_true(fabs(wsum / cnt / (2 * R) - 1) <= 0.03);
+    assert_true(fabs(wmean / (2 * R) - 1) <= 0.03);
     const char *miscible[] = {"surface_tension.interfacial_sigma=0", "time.end=0.004"};
     ry_table m;
     run("cases/mps_two_liquid_drop.yaml", "miscible", 2, miscible, &m, NULL);
