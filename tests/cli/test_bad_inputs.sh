@@ -39,6 +39,7 @@ case_ yaml_directive 2 ":2: YAML directives (lines starting with '%') are not su
 case_ alias 2 ":2: anchors and aliases are not supported"
 case_ contact_angle_without_model 2 ":7: key 'surface_tension.contact_angle': needs a surface_tension.model"
 case_ interfacial_sigma_csf 2 ":9: key 'surface_tension.interfacial_sigma': needs surface_tension.model potential"
+case_ droplet_unknown_material 2 ":7: key 'droplet.material': no material named 'embolic'"
 case_ rheology_no_bound 2 ":6: key 'materials[0].rheology.viscosity_max': required key is missing"
 case_ rheology_with_viscosity 2 ":6: key 'materials[0].viscosity': not used with rheology.model carreau (the viscosity follows from the shear rate)"
 case_ rheology_wcsph 2 ":8: key 'materials[0].rheology.model': oldroyd_b is available with scheme mps only (this case uses wcsph)"
