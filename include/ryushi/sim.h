@@ -123,8 +123,8 @@ typedef struct ry_profile {
  * fluid and a new buffer particle enters one zone length upstream (so the lattice is kept). At
  * an outlet, fluid that crosses the zone's upstream face becomes an outlet buffer particle:
  * it moves on as fluid at the outlet's pressure (and the reference density) and is removed
- * when it leaves the zone. The
- * flow direction is along one axis. */
+ * when it leaves the zone (with sim->open_sink, fluid is removed at the downstream face
+ * instead). The flow direction is along one axis. */
 enum { RY_OPEN_INLET, RY_OPEN_OUTLET };
 typedef struct ry_open_boundary {
     int type;
@@ -231,6 +231,10 @@ struct ry_sim {
     /* open boundaries */
     int nopen;
     ry_open_boundary *open;
+    int open_sink; /* set by a scheme whose outlets are sinks (MPS): fluid that crosses an
+                      outlet's downstream face inside its cross-section is removed, and no
+                      outlet buffer particles are made; the free surface this leaves holds
+                      the pressure at 0 */
 
     /* reliability */
     ry_guard guard;

@@ -105,7 +105,29 @@ ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
                               ry_case_where(c, k, where, sizeof where), k);
             break;
         }
-        if (b->type == RY_OPEN_INLET) st = fill_inlet(sim, b, err);
+        if (b->type == RY_OPEN_INLET) {
+            /* The buffer particles would sit on the fluid's. */
+            for (size_t i = 0; i < sim->ps.n && st == RY_OK; ++i) {
+                if (sim->ps.kind[i] != RY_KIND_FLUID) continue;
+                int in = 1;
+                for (int d = 0; d < dim; ++d) {
+                    const double x = sim->ps.f[RY_F_X + d][i];
+                    in &= x > b->lo[d] && x < b->hi[d];
+                }
+                if (!in) continue;
+                char at[96] = "";
+                for (int d = 0, len = 0; d < dim; ++d)
+                    len += snprintf(at + len, sizeof at - (size_t)len, "%s%g", d ? ", " : "",
+                                    sim->ps.f[RY_F_X + d][i]);
+                snprintf(k, sizeof k, "open_boundaries[%zu].lo", q);
+                st = ry_error_set(err, RY_ERR_INPUT,
+                                  "%s: key '%s': the inlet zone overlaps the fluid particle at "
+                                  "(%s); its buffer particles would sit on the fluid's (end the "
+                                  "fluid bodies at the zone)",
+                                  ry_case_where(c, k, where, sizeof where), k, at);
+            }
+            if (st == RY_OK) st = fill_inlet(sim, b, err);
+        }
     }
     free(mnames);
     return st;
@@ -132,6 +154,14 @@ static int left_sideways(const ry_open_boundary *b, const double *x, int dim) {
     for (int d = 0; d < dim; ++d)
         if (d != b->axis && (x[d] < b->lo[d] - len || x[d] > b->hi[d] + len)) return 0;
     return 1;
+}
+
+/* Marks particle i of n for removal (the flags allocated at the first). */
+static ry_status mark_removed(uint8_t **remove, size_t n, size_t i, ry_error *err) {
+    if (!*remove) *remove = calloc(n, 1);
+    RY_CHECK(err, *remove != NULL, RY_ERR_NOMEM, "out of memory");
+    (*remove)[i] = 1;
+    return RY_OK;
 }
 
 ry_status ry_open_update(ry_sim *sim, ry_error *err) {
@@ -168,6 +198,14 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
             }
             if (b->type != RY_OPEN_OUTLET) continue;
             const int across = inside_across(b, x, dim);
+            if (sim->open_sink) { /* fluid past the downstream face is removed, nothing else */
+                if (!(across && ps->kind[i] == RY_KIND_FLUID && past(b, x, downstream) >= 0))
+                    continue;
+                if ((st = mark_removed(&remove, n, i, err)) != RY_OK) goto done;
+                nremove++;
+                b->count++;
+                break;
+            }
             const int in_zone = across && past(b, x, upstream) >= 0 && past(b, x, downstream) < 0;
             in_outlet |= in_zone;
             if (in_zone && ps->kind[i] == RY_KIND_FLUID) {
@@ -183,12 +221,7 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 ((ps->kind[i] == RY_KIND_OUTLET || ps->kind[i] == RY_KIND_FLUID) &&
                  left_sideways(b, x, dim));
             if (gone) {
-                if (!remove) remove = calloc(n, 1);
-                if (!remove) {
-                    st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
-                    goto done;
-                }
-                remove[i] = 1;
+                if ((st = mark_removed(&remove, n, i, err)) != RY_OK) goto done;
                 nremove++;
                 b->count++;
                 in_outlet = 1;
