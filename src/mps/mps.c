@@ -28,6 +28,8 @@
 #include "mps/sparse.h"
 #include "ryushi/mps.h"
 #include "ryushi/surface_tension.h"
+#include "sph/multiphase.h"
+#include "sph/sph_pairs.h"
 
 enum { SRC_MIXED, SRC_NUMBER_DENSITY };
 enum { VISC_EXPLICIT, VISC_IMPLICIT, VISC_NONE };
@@ -67,8 +69,15 @@ typedef struct mps {
     double *pd;       /* Dirichlet pressure of the surface particles (8 n: work) */
     int csf_pressure; /* CSF as the Laplace jump on the surface particles */
     int csf_smooth;   /* passes of smoothing of that jump along the surface */
-    uint8_t *own;     /* distributed run: unknown k is this rank's own (not a halo copy) */
-    double *ptmp;     /* distributed run: a vector of unknowns spread over the particles */
+    /* CSF between two liquids (surface_tension.interfacial_sigma with model csf): the colour
+     * field of the SPH schemes (sph/multiphase.h) on the case's kernel */
+    int colour_on;
+    ry_colour colour;
+    ry_pair_cache pc;
+    double *cdelta, *cacc; /* its number density and acceleration (n and 3 n) */
+    size_t ccap;
+    uint8_t *own; /* distributed run: unknown k is this rank's own (not a halo copy) */
+    double *ptmp; /* distributed run: a vector of unknowns spread over the particles */
     const ry_sim *sim;
     size_t cap;
     int last_iters, last_viters;
@@ -116,19 +125,69 @@ static ry_status contact_angle(ry_case *c, mps *M, ry_error *err) {
     return RY_OK;
 }
 
-/* Two liquids, potential model: surface_tension.interfacial_sigma sigma_ab. By the Dupre
+/* Two liquids: surface_tension.interfacial_sigma sigma_ab. Potential model: by the Dupre
  * relation the pairs of two different liquids do the work W_ab = 2 sigma - sigma_ab, the
- * coefficient C (1 - sigma_ab / (2 sigma)) (docs/mps.md, "Two liquids"). */
-static ry_status interfacial(ry_case *c, mps *M, ry_error *err) {
+ * coefficient C (1 - sigma_ab / (2 sigma)). CSF: the colour field of the first two materials
+ * (colour 1 for the second), its curvature and the force sigma_ab kappa n / rho_bar, on the
+ * case's SPH kernel (sph/multiphase.h; docs/mps.md, "Two liquids"). */
+static ry_status interfacial(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
     char where[256];
     const char *key = "surface_tension.interfacial_sigma";
     if (!ry_case_has(c, key)) return RY_OK;
-    RY_CHECK(err, M->st.model == RY_ST_POTENTIAL, RY_ERR_INPUT,
-             "%s: key '%s': needs surface_tension.model potential",
+    RY_CHECK(err, M->st.model == RY_ST_POTENTIAL || M->st.model == RY_ST_CSF, RY_ERR_INPUT,
+             "%s: key '%s': needs surface_tension.model potential or csf",
+             ry_case_where(c, key, where, sizeof where), key);
+    RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT, "%s: key '%s': needs two fluid materials",
              ry_case_where(c, key, where, sizeof where), key);
     double sab;
-    RY_TRY(ry_case_double(c, key, NULL, 0.0, 2.0 * M->st.sigma, &sab, err));
-    M->st.cross_ratio = 1.0 - sab / (2.0 * M->st.sigma);
+    if (M->st.model == RY_ST_POTENTIAL) {
+        RY_TRY(ry_case_double(c, key, NULL, 0.0, 2.0 * M->st.sigma, &sab, err));
+        M->st.cross_ratio = 1.0 - sab / (2.0 * M->st.sigma);
+        return RY_OK;
+    }
+    RY_TRY(ry_case_double(c, key, NULL, 0.0, 1e3, &sab, err));
+    RY_CHECK(err, sim->kernel.radius <= M->re_max * (1 + 1e-12), RY_ERR_INPUT,
+             "%s: key '%s': the kernel's support (%g m) must not exceed the MPS radius %g m "
+             "(kernel.h_over_dx at most %g)",
+             ry_case_where(c, key, where, sizeof where), key, sim->kernel.radius, M->re_max,
+             0.5 * M->re_max / sim->dx);
+    M->colour_on = sab > 0;
+    M->colour.sigma = sab;
+    M->colour.material = 1;
+    M->colour.eps = 0.01;
+    M->colour.rho_bar = 0.5 * (sim->mat[0].density + sim->mat[1].density);
+    return M->colour_on ? ry_colour_init(&M->colour, sim, err) : RY_OK;
+}
+
+/* The interfacial acceleration of CSF between two liquids, added to a. */
+static ry_status colour_accelerate(ry_sim *sim, mps *M, double *const a[3], ry_error *err) {
+    static const int mobile[RY_KIND_COUNT] = {[RY_KIND_FLUID] = 1};
+    static const int need[RY_KIND_COUNT] = {[RY_KIND_FLUID] = 1};
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    if (M->ccap < n) {
+        double *b = realloc(M->cdelta, 4 * n * sizeof *b);
+        RY_CHECK(err, b != NULL, RY_ERR_NOMEM, "out of memory (colour field)");
+        M->cdelta = b;
+        M->cacc = b + n;
+        M->ccap = n;
+    }
+    RY_TRY(ry_pair_cache_fill(&M->pc, sim, need, err));
+    /* The SPH number density over every neighbour, the particle itself included. */
+    const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        double sw = w0;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q)
+            sw += M->pc.v[q * RY_PAIR_STRIDE + RY_PW_W];
+        M->cdelta[i] = sw;
+        M->cacc[3 * i] = M->cacc[3 * i + 1] = M->cacc[3 * i + 2] = 0;
+    }
+    if (sim->par) sim->par->sync(sim, M->cdelta, 1);
+    RY_TRY(ry_colour_force(&M->colour, sim, &M->pc, M->cdelta, mobile, M->cacc, err));
+    for (size_t i = 0; i < n; ++i)
+        if (ps->kind[i] == RY_KIND_FLUID)
+            for (int d = 0; d < sim->dim; ++d) a[d][i] += M->cacc[3 * i + d];
     return RY_OK;
 }
 
@@ -199,8 +258,8 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_st_setup(&M->st, model, sim->dim, l0, rst, sigma, err));
     M->st.curvature = curv;
     RY_TRY(contact_angle(c, M, err));
-    RY_TRY(interfacial(c, M, err));
     M->re_max = fmax(fmax(M->re_g, M->re_l), model != RY_ST_NONE ? rst : 0.0);
+    RY_TRY(interfacial(sim, c, M, err));
     double lam_g;
     ry_mps_lattice(sim->dim, l0, M->re_g, &M->n0g, &lam_g);
     ry_mps_lattice(sim->dim, l0, M->re_l, &M->n0l, &M->lambda);
@@ -244,6 +303,9 @@ static void mps_free(void *state) {
     free(M->ptmp);
     free(M->vgrad);
     free(M->wd);
+    free(M->cdelta);
+    ry_colour_free(&M->colour);
+    ry_pair_cache_free(&M->pc);
     free(M);
 }
 
@@ -965,6 +1027,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     for (size_t i = 0; i < n; ++i)
         for (int d = 0; d < dim; ++d) a[d][i] = ps->kind[i] == RY_KIND_FLUID ? sim->gravity[d] : 0;
     if (!M->csf_pressure) RY_TRY(ry_st_accelerate(&M->st, sim, a, err));
+    if (M->colour_on) RY_TRY(colour_accelerate(sim, M, a, err));
     if (M->wall_mode == WALLV_MIRRORED) wall_distances(sim, M);
     if (M->rheo_gnf || M->rheo_ob) rheology_explicit(sim, M, dt);
     if (M->visc == VISC_EXPLICIT) viscous_explicit(sim, M);
@@ -1036,6 +1099,7 @@ static ry_status mps_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
         t = fmin(t, sqrt(rho_min * l0 * l0 * l0 / (2 * RY_PI * M->st.sigma)));
     if (M->visc == VISC_EXPLICIT && nu_max > 0) t = fmin(t, 0.2 * l0 * l0 / nu_max);
     t = fmin(t, elastic);
+    if (M->colour_on) t = fmin(t, ry_colour_dt(&M->colour, sim));
     if (!isfinite(t)) t = sim->dt_max > 0 ? sim->dt_max : sim->output_interval;
     *dt = t;
     return RY_OK;
@@ -1139,32 +1203,55 @@ static ry_status probe_width_x_second(const ry_sim *sim, double *v, ry_error *er
 
 /* Mean pressure of the fluid particles within half the equivalent radius of the fluid's
  * centroid (a drop: R from the fluid volume N dx^d). */
-static ry_status probe_drop_pressure(const ry_sim *sim, double *v, ry_error *err) {
-    (void)err;
+/* Mean pressure of the fluid particles of material mat (-1: any) at a distance from c in
+ * [r_lo, r_hi). */
+static double mean_pressure_around(const ry_sim *sim, int mat, const double *c, double r_lo,
+                                   double r_hi) {
     const ry_particles *ps = &sim->ps;
-    double c[3];
-    const size_t nf = fluid_centroid(sim, c);
-    if (nf == 0) {
-        *v = NAN;
-        return RY_OK;
-    }
-    const double vol = (double)nf * pow(sim->dx, sim->dim);
-    const double R = sim->dim == 2 ? sqrt(vol / RY_PI) : cbrt(3 * vol / (4 * RY_PI));
     double s = 0;
     size_t k = 0;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || (mat >= 0 && ps->material[i] != mat)) continue;
         double r2 = 0;
         for (int d = 0; d < sim->dim; ++d) {
             const double e = ps->f[RY_F_X + d][i] - c[d];
             r2 += e * e;
         }
-        if (r2 < 0.25 * R * R) {
+        if (r2 >= r_lo * r_lo && r2 < r_hi * r_hi) {
             s += ps->f[RY_F_P][i];
             ++k;
         }
     }
-    *v = k ? s / (double)k : NAN;
+    return k ? s / (double)k : NAN;
+}
+
+/* The equivalent radius of nf particles (circle or sphere of their volume). */
+static double equivalent_radius(const ry_sim *sim, size_t nf) {
+    const double vol = (double)nf * pow(sim->dx, sim->dim);
+    return sim->dim == 2 ? sqrt(vol / RY_PI) : cbrt(3 * vol / (4 * RY_PI));
+}
+
+static ry_status probe_drop_pressure(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    double c[3];
+    const size_t nf = fluid_centroid(sim, c);
+    *v = nf ? mean_pressure_around(sim, -1, c, 0.0, 0.5 * equivalent_radius(sim, nf)) : NAN;
+    return RY_OK;
+}
+
+/* A drop of the second material in the first: the mean pressure within half its equivalent
+ * radius of its centroid less that of the first material more than 5 spacings outside it. */
+static ry_status probe_pressure_jump_second(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    double c[3];
+    const size_t nf = sim->nmat > 1 ? fluid_centroid_of(sim, 1, c) : 0;
+    if (nf == 0) {
+        *v = NAN;
+        return RY_OK;
+    }
+    const double R = equivalent_radius(sim, nf);
+    *v = mean_pressure_around(sim, 1, c, 0.0, 0.5 * R) -
+         mean_pressure_around(sim, 0, c, R + 5 * sim->dx, INFINITY);
     return RY_OK;
 }
 
@@ -1289,6 +1376,11 @@ const ry_probe ry_probe_drop_pressure = {
     "drop_pressure",
     "mean pressure of the fluid within half the equivalent radius of its centroid [Pa]",
     probe_drop_pressure};
+const ry_probe ry_probe_pressure_jump_second = {
+    "pressure_jump_second",
+    "drop of the second material in the first: mean pressure within half its equivalent radius "
+    "of its centroid less the first material's beyond 5 spacings outside it [Pa]",
+    probe_pressure_jump_second};
 const ry_probe ry_probe_contact_angle = {
     "contact_angle",
     "sessile drop on a floor: contact angle [degrees] of a circle (sphere) fitted to the free "
