@@ -21,6 +21,8 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
 
 /* The MPS scheme: hydrostatic column, oscillating drops, drop at rest (validate_mps.c). */
 int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failures);
+/* Prints a validation check's line (PASS or FAIL) and counts a failure. */
+void ry_cli_check(const char *what, int ok, int *failures);
 /* The 2D embolization tank: droplet, volumes, Tate's law (validate_embolization.c). */
 int ry_cli_validate_embolization(const char *root, const char *out, int quick, int *failures);
 /* Non-Newtonian channel flows (validate_rheology.c). */

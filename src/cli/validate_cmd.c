@@ -397,6 +397,11 @@ static int validate_channel(vctx *v) {
     return 0;
 }
 
+void ry_cli_check(const char *what, int ok, int *failures) {
+    printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
+    if (!ok) ++*failures;
+}
+
 int ry_cli_validate(int argc, char **argv) {
     vctx v = {RY_SOURCE_DIR, "out/validate", 0, 0};
     const char *root_env = getenv("RY_SOURCE_DIR");

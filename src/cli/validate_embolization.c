@@ -25,11 +25,6 @@
 #define DRHO (1182.0 - 1e3) /* density difference [kg/m^3] */
 #define G 9.8
 
-static void check(const char *what, int ok, int *failures) {
-    printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
-    if (!ok) ++*failures;
-}
-
 /* Series columns scaled into new arrays (NULL when the column is missing). */
 static double *scaled(const ry_table *s, const char *name, double k) {
     const int c = ry_table_col(s, name);
@@ -184,15 +179,15 @@ static void model_check(const char *root, const char *out, double t_end, model_r
     }
     char what[128];
     snprintf(what, sizeof what, "%s: injected volume within 1 %% of U w t", m->sub);
-    check(what, fabs(vin / (U_IN * BORE * t) - 1) < 0.01, failures);
+    ry_cli_check(what, fabs(vin / (U_IN * BORE * t) - 1) < 0.01, failures);
     snprintf(what, sizeof what, "%s: outflow plus the level's rise within 5 %% of the inflow",
              m->sub);
-    check(what, fabs(balance) < 0.05, failures);
+    ry_cli_check(what, fabs(balance) < 0.05, failures);
     snprintf(what, sizeof what, "%s: largest speed below 0.3 m/s (a stable run)", m->sub);
-    check(what, vmax < 0.3, failures);
+    ry_cli_check(what, vmax < 0.3, failures);
     if (strcmp(m->sub, "csf") == 0 && t_end > 1.2 * t_tate) {
         snprintf(what, sizeof what, "%s: detaches within 10 %% of Tate's law (2D)", m->sub);
-        check(what, t_det > 0 && fabs(t_det / t_tate - 1) < 0.10, failures);
+        ry_cli_check(what, t_det > 0 && fabs(t_det / t_tate - 1) < 0.10, failures);
     }
 }
 

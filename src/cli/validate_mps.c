@@ -15,11 +15,6 @@
 
 #define PI 3.14159265358979323846
 
-static void check(const char *what, int ok, int *failures) {
-    printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
-    if (!ok) ++*failures;
-}
-
 /* Runs a case into out/sub; keeps the simulation (caller frees) and reads its series. */
 static ry_status run_mps(const char *root, const char *out, const char *case_rel, const char *sub,
                          int nset, const char *const *sets, ry_table *series, ry_sim *sim,
@@ -86,8 +81,9 @@ static void validate_hydrostatic(const char *root, const char *out, int quick, i
     const double vlate = ry_column_max(&s, "max_speed");
     printf("  largest speed over the run %.4f m/s; %.2f PPE iterations per step; %.1f s wall\n",
            vlate, (double)ry_mps_total_iterations(&sim) / (double)stats.steps, stats.wall_s);
-    check("pressure at depths of 10 to 38 spacings within 2 % of rho g h", worst <= 0.02, failures);
-    check("largest speed below 0.1 m/s (no growing oscillation)", vlate < 0.1, failures);
+    ry_cli_check("pressure at depths of 10 to 38 spacings within 2 % of rho g h", worst <= 0.02,
+                 failures);
+    ry_cli_check("largest speed below 0.1 m/s (no growing oscillation)", vlate < 0.1, failures);
     ry_sim_free(&sim);
     ry_table_free(&s);
 }
@@ -197,15 +193,15 @@ static void validate_drops(const char *root, const char *out, int quick, int *fa
                 const double bar = dc.n == 30 ? 0.03 : 0.08;
                 snprintf(what, sizeof what, "%s potential: period within %.0f %% of Lamb", dc.name,
                          100 * bar);
-                check(what, fabs(pe) <= bar, failures);
+                ry_cli_check(what, fabs(pe) <= bar, failures);
             }
             if (m == 1 && dc.dim == 3 && dc.n == 30) {
                 snprintf(what, sizeof what, "%s CSF: period within 10 %% of Lamb", dc.name);
-                check(what, fabs(pe) <= 0.10, failures);
+                ry_cli_check(what, fabs(pe) <= 0.10, failures);
             }
             if (m == 0 && dc.dim == 2) {
                 snprintf(what, sizeof what, "%s potential: period within 10 %% of Lamb", dc.name);
-                check(what, fabs(pe) <= 0.10, failures);
+                ry_cli_check(what, fabs(pe) <= 0.10, failures);
             }
         }
         ry_plot_legend(p, c, RY_PLOT_LEGEND_SE, &err);
@@ -297,7 +293,7 @@ static void validate_rest(const char *root, const char *out, int *failures) {
             char what[128];
             snprintf(what, sizeof what, "%s: pressure jump within 5 %% of the Laplace jump",
                      rest[k].name);
-            check(what, fabs(e) <= 0.05, failures);
+            ry_cli_check(what, fabs(e) <= 0.05, failures);
         }
     }
     rest_result r1, r2;
@@ -315,7 +311,8 @@ static void validate_rest(const char *root, const char *out, int *failures) {
     printf("  %-24s %8.2f +- %4.1f %+8.1f%% %14.4f %14.4f\n", "potential, p(1)-p(2 mm)", dp,
            sqrt(r1.p_se * r1.p_se + r2.p_se * r2.p_se), 100 * e, r2.v_rms, r2.v_max);
     printf("  (reference sigma (1/R1 - 1/R2) = %.2f Pa; speeds of the 2 mm drop)\n", ref);
-    check("potential: p(R1) - p(R2) within 5 % of sigma (1/R1 - 1/R2)", fabs(e) <= 0.05, failures);
+    ry_cli_check("potential: p(R1) - p(R2) within 5 % of sigma (1/R1 - 1/R2)", fabs(e) <= 0.05,
+                 failures);
 }
 
 /* MPS dam break against Martin & Moyce, beside WCSPH at the same spacing (a/20). */
@@ -365,10 +362,10 @@ static void validate_dam_break_mps(const char *root, const char *out, int *failu
         ry_cli_add_series(p, 0, names[k], &s, "t", sqrt(2 * g / a), "front_x", 1 / a,
                           ry_plot_style_line(), &err);
         if (k == 0) {
-            check("MPS: front within 0.30 (max) and 0.20 (rms) of the experiment",
-                  cmp.max_dev <= 0.30 && cmp.rms_dev <= 0.20, failures);
-            check("MPS: mass exact, no fluid outside the tank",
-                  ry_mass_drift(&s) <= 1e-12 && ry_column_max(&s, "outside") == 0, failures);
+            ry_cli_check("MPS: front within 0.30 (max) and 0.20 (rms) of the experiment",
+                         cmp.max_dev <= 0.30 && cmp.rms_dev <= 0.20, failures);
+            ry_cli_check("MPS: mass exact, no fluid outside the tank",
+                         ry_mass_drift(&s) <= 1e-12 && ry_column_max(&s, "outside") == 0, failures);
         }
         ry_sim_free(&sim);
         ry_table_free(&s);
@@ -443,7 +440,7 @@ static void validate_sessile(const char *root, const char *out, int *failures) {
         }
         char what[96];
         snprintf(what, sizeof what, "sessile drop %g degrees: within 5 degrees", thetas[k]);
-        check(what, fabs(mean - thetas[k]) <= 5.0, failures);
+        ry_cli_check(what, fabs(mean - thetas[k]) <= 5.0, failures);
         free(t);
         free(a);
         ry_sim_free(&sim);

@@ -16,11 +16,6 @@
 #define CH 1.0e-3 /* channel width of the cases [m] */
 #define MAXROWS 128
 
-static void check(const char *what, int ok, int *failures) {
-    printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
-    if (!ok) ++*failures;
-}
-
 /* Runs case_rel at n particles across into out/sub, keeping the simulation and its series. */
 static ry_status run_at(const char *root, const char *out, const char *case_rel, const char *sub,
                         int across, ry_table *series, ry_sim *sim, ry_run_stats *stats,
@@ -100,9 +95,9 @@ static void steady_run(const char *root, const char *out, const steady_case *sc,
     }
     char what[160];
     snprintf(what, sizeof what, "%s, %d across: profile RMS within 3 %% of u_c", sc->name, across);
-    check(what, rms < 0.03, failures);
+    ry_cli_check(what, rms < 0.03, failures);
     snprintf(what, sizeof what, "%s, %d across: centreline within 3 %%", sc->name, across);
-    check(what, fabs(centre) < 0.03, failures);
+    ry_cli_check(what, fabs(centre) < 0.03, failures);
     ry_sim_free(&sim);
     ry_table_free(&s);
 }
@@ -158,9 +153,9 @@ static void startup_run(const char *root, const char *out, int across, FILE *md,
     char what[160];
     snprintf(what, sizeof what, "Oldroyd-B, %d across: within 4 %% of the peak at every output",
              across);
-    check(what, worst < 0.04 * peak_ref, failures);
+    ry_cli_check(what, worst < 0.04 * peak_ref, failures);
     snprintf(what, sizeof what, "Oldroyd-B, %d across: first peak within 5 %%", across);
-    check(what, fabs(peak / peak_ref - 1) < 0.05, failures);
+    ry_cli_check(what, fabs(peak / peak_ref - 1) < 0.05, failures);
     free(t);
     free(v);
     free(va);

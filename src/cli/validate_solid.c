@@ -67,11 +67,6 @@ static ry_status run_beam(const char *root, const char *out, int ki, int n, cons
 }
 
 /* Prints a check with PASS or FAIL and counts a failure. */
-static void check(const char *what, int ok, int *failures) {
-    printf("  %-60s %s\n", what, ok ? "PASS" : "FAIL");
-    if (!ok) (*failures)++;
-}
-
 /* Writes a plot as out/name and frees it. */
 static void finish_plot(ry_plot *p, const char *out, const char *name, int *failures) {
     ry_error err = {0};
@@ -223,7 +218,7 @@ int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int
             }
             ry_sim_free(&sim);
         }
-        check("3D bar: tip within 2.5 % of Timoshenko", fabs(e3) <= 2.5, failures);
+        ry_cli_check("3D bar: tip within 2.5 % of Timoshenko", fabs(e3) <= 2.5, failures);
     }
 
     /* plot: deflection profile, and tip errors against resolution */
@@ -356,22 +351,22 @@ int ry_cli_validate_plate(const char *root, const char *out, int quick, int *fai
             snprintf(what, sizeof what, "%s, H/dx = %d: energy does not grow over 10 periods",
                      form == 0 ? "UL" : "TL", nh[r]);
             int ok = o.energy_last <= o.energy_first * 1.001;
-            check(what, ok, failures);
+            ry_cli_check(what, ok, failures);
             if (form == 0) {
                 snprintf(what, sizeof what, "UL, H/dx = %d: no clumping (min r/dx >= 0.9)", nh[r]);
                 ok = msp >= 0.9;
-                check(what, ok, failures);
+                ry_cli_check(what, ok, failures);
             }
         }
     /* verdicts: total-Lagrangian within 3 % at H/dx = 4 already (measured +1.8 %); the
      * updated-Lagrangian form converges from above (measured +13 % at H/dx = 4, +7 % at 8) */
     int ok = fabs(err_tl[nres - 1]) <= 3.0;
-    check("TL: period within 3 % of thin-plate theory", ok, failures);
+    ry_cli_check("TL: period within 3 % of thin-plate theory", ok, failures);
     ok = fabs(err_ul[0]) <= 15.0;
-    check("UL: period within 15 % at H/dx = 4", ok, failures);
+    ry_cli_check("UL: period within 15 % at H/dx = 4", ok, failures);
     if (nres > 1) {
         ok = fabs(err_ul[1]) < fabs(err_ul[0]) && fabs(err_ul[1]) <= 8.0;
-        check("UL: error falls with resolution, within 8 % at H/dx = 8", ok, failures);
+        ry_cli_check("UL: error falls with resolution, within 8 % at H/dx = 8", ok, failures);
     }
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_NE, &err);
     finish_plot(p, out, "oscillating_plate.png", failures);
@@ -471,7 +466,7 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
     printf("  Southwell: P_cr = %.4f x Euler (%.4g N), error %+.2f %%\n", pcr_sw, pcr_sw * pcr,
            100 * (pcr_sw - 1));
     int ok = fabs(pcr_sw - 1) <= 0.05;
-    check("critical load within 5 % of pi^2 EI / (4 L^2)", ok, failures);
+    ry_cli_check("critical load within 5 % of pi^2 EI / (4 L^2)", ok, failures);
 
     /* above: the post-buckled tip against Euler's elastica */
     const double sup[3] = {1.2, 1.1, 1.5};
@@ -511,7 +506,7 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
     }
     printf("  largest distance at the same P / P_cr: %.4f L\n", worst);
     ok = worst_own <= 0.03;
-    check("post-buckled tip within 3 % of L of the elastica (own P_cr)", ok, failures);
+    ry_cli_check("post-buckled tip within 3 % of L of the elastica (own P_cr)", ok, failures);
     printf("  post-buckled shape (VTK): %s/buckling_1.20/\n", out);
     ry_plot_legend(p, 1, RY_PLOT_LEGEND_SW, &err);
     finish_plot(p, out, "filament_buckling.png", failures);

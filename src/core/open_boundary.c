@@ -50,6 +50,31 @@ static ry_status fill_inlet(ry_sim *sim, const ry_open_boundary *b, ry_error *er
     return RY_OK;
 }
 
+/* An inlet zone must hold no fluid: its buffer particles would sit on the fluid's. */
+static ry_status inlet_clear(const ry_sim *sim, ry_case *c, size_t q, const ry_open_boundary *b,
+                             ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        int in = 1;
+        for (int d = 0; d < sim->dim; ++d)
+            in &= ps->f[RY_F_X + d][i] > b->lo[d] && ps->f[RY_F_X + d][i] < b->hi[d];
+        if (!in) continue;
+        char at[96] = "", k[64], where[256];
+        for (int d = 0, len = 0; d < sim->dim; ++d)
+            len += snprintf(at + len, sizeof at - (size_t)len, "%s%g", d ? ", " : "",
+                            ps->f[RY_F_X + d][i]);
+        snprintf(k, sizeof k, "open_boundaries[%zu].lo", q);
+        return ry_error_set(
+            err, RY_ERR_INPUT,
+            "%s: key '%s': the inlet zone overlaps the fluid particle at (%s); its "
+            "buffer particles would sit on the fluid's (end the fluid bodies at the "
+            "zone)",
+            ry_case_where(c, k, where, sizeof where), k, at);
+    }
+    return RY_OK;
+}
+
 ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
     size_t n;
     RY_TRY(ry_case_count(c, "open_boundaries", &n, err));
@@ -105,29 +130,8 @@ ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
                               ry_case_where(c, k, where, sizeof where), k);
             break;
         }
-        if (b->type == RY_OPEN_INLET) {
-            /* The buffer particles would sit on the fluid's. */
-            for (size_t i = 0; i < sim->ps.n && st == RY_OK; ++i) {
-                if (sim->ps.kind[i] != RY_KIND_FLUID) continue;
-                int in = 1;
-                for (int d = 0; d < dim; ++d) {
-                    const double x = sim->ps.f[RY_F_X + d][i];
-                    in &= x > b->lo[d] && x < b->hi[d];
-                }
-                if (!in) continue;
-                char at[96] = "";
-                for (int d = 0, len = 0; d < dim; ++d)
-                    len += snprintf(at + len, sizeof at - (size_t)len, "%s%g", d ? ", " : "",
-                                    sim->ps.f[RY_F_X + d][i]);
-                snprintf(k, sizeof k, "open_boundaries[%zu].lo", q);
-                st = ry_error_set(err, RY_ERR_INPUT,
-                                  "%s: key '%s': the inlet zone overlaps the fluid particle at "
-                                  "(%s); its buffer particles would sit on the fluid's (end the "
-                                  "fluid bodies at the zone)",
-                                  ry_case_where(c, k, where, sizeof where), k, at);
-            }
-            if (st == RY_OK) st = fill_inlet(sim, b, err);
-        }
+        if (b->type == RY_OPEN_INLET && (st = inlet_clear(sim, c, q, b, err)) == RY_OK)
+            st = fill_inlet(sim, b, err);
     }
     free(mnames);
     return st;
