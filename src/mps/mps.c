@@ -78,6 +78,13 @@ typedef struct mps {
     size_t ccap;
     uint8_t *own; /* distributed run: unknown k is this rank's own (not a halo copy) */
     double *ptmp; /* distributed run: a vector of unknowns spread over the particles */
+    /* The pairs within re_g and re_l at the current positions (pairs_build), in the rows of
+     * the neighbour list: row i holds from sim->nl.offset[i] the pairs of the smaller radius,
+     * then those of the larger one; gend[i] and lend[i] end the pairs within re_g and re_l. */
+    uint32_t *pj;
+    double *pr; /* distance */
+    size_t *gend, *lend;
+    size_t pq_cap, pn_cap;
     const ry_sim *sim;
     size_t cap;
     int last_iters, last_viters;
@@ -304,6 +311,10 @@ static void mps_free(void *state) {
     free(M->vgrad);
     free(M->wd);
     free(M->cdelta);
+    free(M->pj);
+    free(M->pr);
+    free(M->gend);
+    free(M->lend);
     ry_colour_free(&M->colour);
     ry_pair_cache_free(&M->pc);
     free(M);
@@ -381,6 +392,92 @@ static inline double sep(const ry_sim *sim, size_t i, size_t j, double *dx) {
     return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
 }
 
+/* The pairs within re_g and re_l (the fields pj, pr, gend, lend of mps) from the neighbour
+ * list, whose reach is the largest radius and a skin: the loops over them need neither the
+ * distances nor the pairs beyond their radius again. Within each radius the pairs keep the
+ * order of the list. */
+static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
+    const size_t n = sim->ps.n, nq = sim->nl.offset[n];
+    if (M->pq_cap < nq) {
+        const size_t c = nq + nq / 4 + 16;
+        uint32_t *j = realloc(M->pj, c * sizeof *j);
+        if (j) M->pj = j;
+        double *r = realloc(M->pr, c * sizeof *r);
+        if (r) M->pr = r;
+        RY_CHECK(err, j && r, RY_ERR_NOMEM, "out of memory (MPS pairs: %zu)", nq);
+        M->pq_cap = c;
+    }
+    if (M->pn_cap < n) {
+        const size_t c = n + n / 4 + 16;
+        size_t *g = realloc(M->gend, c * sizeof *g);
+        if (g) M->gend = g;
+        size_t *l = realloc(M->lend, c * sizeof *l);
+        if (l) M->lend = l;
+        RY_CHECK(err, g && l, RY_ERR_NOMEM, "out of memory (MPS pairs)");
+        M->pn_cap = c;
+    }
+    const double ri = fmin(M->re_g, M->re_l), ro = fmax(M->re_g, M->re_l);
+    const double ri2 = ri * ri, ro2 = ro * ro;
+    const int g_inner = M->re_g <= M->re_l, dim = sim->dim;
+    int periodic = 0;
+    for (int d = 0; d < dim; ++d) periodic |= sim->box.periodic[d];
+    size_t rowmax = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (sim->nl.offset[i + 1] - sim->nl.offset[i] > rowmax)
+            rowmax = sim->nl.offset[i + 1] - sim->nl.offset[i];
+    const double *x[3];
+    for (int d = 0; d < 3; ++d) x[d] = sim->ps.f[RY_F_X + (d < dim ? d : 0)];
+    int ok = 1;
+#pragma omp parallel reduction(&& : ok)
+    {
+        /* the outer pairs of a row, until they follow the inner ones */
+        uint32_t *oj = malloc((rowmax + 1) * sizeof *oj);
+        double *orr = malloc((rowmax + 1) * sizeof *orr);
+        ok = oj && orr;
+#pragma omp for schedule(dynamic, 64)
+        for (size_t i = 0; i < n; ++i) {
+            if (!ok) continue;
+            const size_t lo = sim->nl.offset[i], hi = sim->nl.offset[i + 1];
+            const uint32_t *nj = sim->nl.j;
+            double *r2 = M->pr;
+            /* squared distances, in place (without periodic sides a loop the compiler
+             * vectorises) */
+            for (size_t q = lo; q < hi; ++q) {
+                double s = 0, dx[3];
+                if (periodic)
+                    s = sep(sim, i, nj[q], dx);
+                else
+                    for (int d = 0; d < dim; ++d) {
+                        const double e = x[d][nj[q]] - x[d][i];
+                        s += e * e;
+                    }
+                r2[q] = s;
+            }
+            size_t a = lo, no = 0;
+            for (size_t q = lo; q < hi; ++q) {
+                const double v = r2[q];
+                const uint32_t j = nj[q];
+                if (v < ri2) {
+                    M->pj[a] = j;
+                    r2[a++] = v;
+                } else if (v < ro2) {
+                    oj[no] = j;
+                    orr[no++] = v;
+                }
+            }
+            memcpy(M->pj + a, oj, no * sizeof *oj);
+            memcpy(r2 + a, orr, no * sizeof *orr);
+            for (size_t q = lo; q < a + no; ++q) r2[q] = sqrt(r2[q]);
+            M->gend[i] = g_inner ? a : a + no;
+            M->lend[i] = g_inner ? a + no : a;
+        }
+        free(oj);
+        free(orr);
+    }
+    RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (MPS pairs)");
+    return RY_OK;
+}
+
 /* Number density (ratio n/n0) of every particle at the current positions, and the roles: free
  * surface (p = 0) for fluid and wall particles with n < beta n0 (walls above the water line);
  * the other wall particles with a fluid neighbour within re take part in the pressure
@@ -388,19 +485,16 @@ static inline double sep(const ry_sim *sim, size_t i, size_t j, double *dx) {
 static void number_density(ry_sim *sim, mps *M) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    const double re = M->re_g, re2 = re * re, reach2 = M->wall_reach * M->wall_reach;
+    const double re = M->re_g, reach = M->wall_reach;
     double *nd = ps->f[M->f_nd], *surf = ps->f[M->f_surf];
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         double s = 0;
         int fluid_near = 0;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
-            double dx[3];
-            const double r2 = sep(sim, i, j, dx);
-            if (r2 >= re2) continue;
-            s += ry_mps_weight_tamai(sqrt(r2), re);
-            if (ps->kind[j] == RY_KIND_FLUID && r2 < reach2) fluid_near = 1;
+        for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+            const double r = M->pr[q];
+            s += ry_mps_weight_tamai(r, re);
+            if (ps->kind[M->pj[q]] == RY_KIND_FLUID && r < reach) fluid_near = 1;
         }
         nd[i] = s / M->n0g;
         if (ps->kind[i] == RY_KIND_FLUID) {
@@ -448,8 +542,8 @@ static void wall_distances(ry_sim *sim, mps *M) {
     for (size_t i = 0; i < ps->n; ++i) {
         const int fi = ps->kind[i] == RY_KIND_FLUID;
         double r2min = INFINITY;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
+        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
+            const uint32_t j = M->pj[q];
             if ((ps->kind[j] == RY_KIND_FLUID) == fi) continue;
             double dx[3];
             const double r2 = sep(sim, i, j, dx);
@@ -499,8 +593,8 @@ static int corrected_gradient(const ry_sim *sim, const mps *M, size_t i, int flu
     const int dim = sim->dim;
     const double re2 = M->re_g * M->re_g;
     double m[3][3] = {{0}}, g[6][3] = {{0}};
-    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-        const uint32_t j = sim->nl.j[q];
+    for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+        const uint32_t j = M->pj[q];
         if (fluid_only && sim->ps.kind[j] != RY_KIND_FLUID) continue;
         double dx[3];
         const double r2 = sep(sim, i, j, dx);
@@ -614,17 +708,14 @@ static void viscous_explicit(ry_sim *sim, const mps *M) {
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
-    const double re = M->re_l, re2 = re * re, cl = 2.0 * dim / (M->lambda * M->n0l);
+    const double re = M->re_l, cl = 2.0 * dim / (M->lambda * M->n0l);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
         double s[3] = {0, 0, 0};
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
-            double dx[3];
-            const double r2 = sep(sim, i, j, dx);
-            if (r2 >= re2) continue;
-            const double w = pair_nu(sim, M, i, j) * ry_mps_weight_tamai(sqrt(r2), re);
+        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
+            const uint32_t j = M->pj[q];
+            const double w = pair_nu(sim, M, i, j) * ry_mps_weight_tamai(M->pr[q], re);
             for (int d = 0; d < dim; ++d)
                 s[d] +=
                     w * wall_beta(sim, M, i, j) * (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]);
@@ -644,7 +735,7 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, d
                           double diag_extra, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    const double re = M->re_l, re2 = re * re, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
+    const double re = M->re_l, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
     /* Row lengths (diagonal included) in parallel, their prefix sums, then the rows. */
     RY_TRY(ry_csr_reserve(&M->A, nunk, 0, err));
     ry_csr *A = &M->A;
@@ -653,10 +744,7 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, d
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;
         size_t len = 1;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            double dx[3];
-            if (M->unk[sim->nl.j[q]] >= 0 && sep(sim, i, sim->nl.j[q], dx) < re2) len += 1;
-        }
+        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) len += M->unk[M->pj[q]] >= 0;
         A->row[(size_t)M->unk[i] + 1] = len;
     }
     for (size_t k = 0; k < nunk; ++k) A->row[k + 1] += A->row[k];
@@ -668,16 +756,12 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, d
         size_t p = A->row[k];
         const size_t pdiag = p++;
         double diag = diag_extra;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
-            double dx[3], coef = 0;
-            const double r2 = sep(sim, i, j, dx);
-            const int uj = M->unk[j] >= 0 && r2 < re2;
-            double a = 0;
-            if (r2 < re2 && couples(sim, M, i, j, &coef, dt))
-                a = cl * coef * ry_mps_weight_tamai(sqrt(r2), re);
+        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
+            const uint32_t j = M->pj[q];
+            double coef = 0, a = 0;
+            if (couples(sim, M, i, j, &coef, dt)) a = cl * coef * ry_mps_weight_tamai(M->pr[q], re);
             diag += a;
-            if (uj) {
+            if (M->unk[j] >= 0) {
                 A->col[p] = (uint32_t)M->unk[j];
                 A->val[p++] = -a;
             }
@@ -714,7 +798,7 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
     size_t nunk = 0;
     for (size_t i = 0; i < n; ++i) M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
     RY_TRY(assemble(sim, M, nunk, couple_viscous, dt, 1.0, err));
-    const double re = M->re_l, re2 = re * re, cl = 2.0 * dim / (M->lambda * M->n0l);
+    const double re = M->re_l, cl = 2.0 * dim / (M->lambda * M->n0l);
     M->last_viters = 0;
     for (int d = 0; d < dim; ++d) {
         const double *v = ps->f[RY_F_VX + d], *a = ps->f[RY_F_AX + d];
@@ -723,13 +807,10 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
         for (size_t i = 0; i < n; ++i) {
             if (M->unk[i] < 0) continue;
             double rhs = v[i] + dt * a[i];
-            for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-                const uint32_t j = sim->nl.j[q];
+            for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
+                const uint32_t j = M->pj[q];
                 if (M->unk[j] >= 0) continue;
-                double dx[3];
-                const double r2 = sep(sim, i, j, dx);
-                if (r2 >= re2) continue;
-                rhs += cl * dt * pair_nu(sim, M, i, j) * ry_mps_weight_tamai(sqrt(r2), re) *
+                rhs += cl * dt * pair_nu(sim, M, i, j) * ry_mps_weight_tamai(M->pr[q], re) *
                        wall_beta(sim, M, i, j) * v[j];
             }
             M->b[M->unk[i]] = rhs;
@@ -752,8 +833,8 @@ static double divergence(const ry_sim *sim, const mps *M, size_t i) {
     const ry_particles *ps = &sim->ps;
     const double re = M->re_g, re2 = re * re;
     double s = 0;
-    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-        const uint32_t j = sim->nl.j[q];
+    for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+        const uint32_t j = M->pj[q];
         double dx[3];
         const double r2 = sep(sim, i, j, dx);
         if (r2 >= re2 || r2 <= 0) continue;
@@ -784,8 +865,8 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
         pw[i] = p[i];
         if (M->role[i] != ROLE_WALL) continue;
         double s = 0, sw = 0;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
+        for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+            const uint32_t j = M->pj[q];
             double dx[3];
             const double r2 = sep(sim, i, j, dx);
             if (ps->kind[j] != RY_KIND_FLUID || r2 >= re2) continue;
@@ -825,8 +906,8 @@ static void csf_dirichlet(ry_sim *sim, mps *M) {
             tmp[i] = pd[i];
             if (M->role[i] != ROLE_SURFACE || ps->kind[i] != RY_KIND_FLUID) continue;
             double ks = pd[i], ws = 1.0;
-            for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-                const uint32_t j = sim->nl.j[q];
+            for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+                const uint32_t j = M->pj[q];
                 double dx[3];
                 const double r2 = sep(sim, i, j, dx);
                 if (M->role[j] != ROLE_SURFACE || ps->kind[j] != RY_KIND_FLUID || r2 >= re2 ||
@@ -872,20 +953,16 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         csf_dirichlet(sim, M);
     else
         for (size_t i = 0; i < n; ++i) M->pd[i] = 0;
-    const double rel = M->re_l, rel2 = rel * rel, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
+    const double rel = M->re_l, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;
         const double rho = sim->mat[ps->material[i]].density;
         double b = g * rho / (dt * dt) * (M->dilate ? nd[i] - 1.0 : fmax(nd[i] - 1.0, 0.0));
         if (g < 1.0) b -= (1.0 - g) * rho / dt * divergence(sim, M, i);
-        for (size_t q = sim->nl.offset[i]; M->csf_pressure && q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
-            double dx[3];
-            const double r2 = sep(sim, i, j, dx);
-            if (M->role[j] == ROLE_SURFACE && r2 < rel2)
-                b += cl * ry_mps_weight_tamai(sqrt(r2), rel) * M->pd[j];
-        }
+        for (size_t q = sim->nl.offset[i]; M->csf_pressure && q < M->lend[i]; ++q)
+            if (M->role[M->pj[q]] == ROLE_SURFACE)
+                b += cl * ry_mps_weight_tamai(M->pr[q], rel) * M->pd[M->pj[q]];
         M->b[M->unk[i]] = b;
         M->xs[M->unk[i]] = ps->f[RY_F_P][i];
     }
@@ -926,15 +1003,15 @@ static void correct(ry_sim *sim, mps *M, double dt) {
          * protruding particle, whose larger curvature gives it the larger jump, would lose the
          * difference that pushes it back, and the surface roughens until the drop breaks up. */
         const int own = M->csf_pressure && M->role[i] == ROLE_SURFACE;
-        for (size_t q = sim->nl.offset[i]; M->pmin_on && !own && q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
+        for (size_t q = sim->nl.offset[i]; M->pmin_on && !own && q < M->gend[i]; ++q) {
+            const uint32_t j = M->pj[q];
             double dx[3];
             if (M->role[j] == ROLE_DUMMY || sep(sim, i, j, dx) >= re2) continue;
             pmin = fmin(pmin, p[j]);
         }
         double m[3][3] = {{0}}, g[3] = {0, 0, 0}, x[3] = {0, 0, 0};
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
+        for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+            const uint32_t j = M->pj[q];
             double dx[3];
             const double r2 = sep(sim, i, j, dx);
             if (M->role[j] == ROLE_DUMMY || r2 >= re2 || r2 <= 0) continue;
@@ -975,8 +1052,8 @@ static void collisions(ry_sim *sim, mps *M, double dt) {
     for (size_t i = 0; i < n; ++i) {
         double s[3] = {0, 0, 0};
         if (ps->kind[i] == RY_KIND_FLUID)
-            for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-                const uint32_t j = sim->nl.j[q];
+            for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+                const uint32_t j = M->pj[q];
                 double dx[3];
                 const double r2 = sep(sim, i, j, dx);
                 if (r2 >= rc2 || r2 <= 0) continue;
@@ -1021,6 +1098,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     /* Explicit part at x^n: gravity, surface tension, viscosity. */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
+    RY_TRY(pairs_build(sim, M, err));
     size_t n = ps->n;
     double *a[3];
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
@@ -1046,6 +1124,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     /* Pressure at x* (the list may be rebuilt and the particles reordered). */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
+    RY_TRY(pairs_build(sim, M, err));
     number_density(sim, M);
     RY_TRY(pressure(sim, M, dt, err));
     correct(sim, M, dt);
