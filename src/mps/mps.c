@@ -82,9 +82,9 @@ typedef struct mps {
      * the neighbour list: row i holds from sim->nl.offset[i] the pairs of the smaller radius,
      * then those of the larger one; gend[i] and lend[i] end the pairs within re_g and re_l. */
     uint32_t *pj;
-    double *pr; /* distance */
-    size_t *gend, *lend;
-    size_t pq_cap, pn_cap;
+    double *pr;          /* distance */
+    size_t *gend, *lend; /* (per particle: allocated by scratch) */
+    size_t pq_cap;
     const ry_sim *sim;
     size_t cap;
     int last_iters, last_viters;
@@ -337,6 +337,10 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (o) M->own = o;
     double *t = realloc(M->ptmp, c * sizeof *t);
     if (t) M->ptmp = t;
+    size_t *ge = realloc(M->gend, c * sizeof *ge);
+    if (ge) M->gend = ge;
+    size_t *le = realloc(M->lend, c * sizeof *le);
+    if (le) M->lend = le;
     double *vg = M->vgrad;
     if (M->rheo_ob) {
         vg = realloc(M->vgrad, 9 * c * sizeof *vg);
@@ -348,7 +352,7 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         if (wv) M->wd = wv;
     }
     RY_CHECK(err,
-             u && r && b && x && pd && o && t && (vg || !M->rheo_ob) &&
+             u && r && b && x && pd && o && t && ge && le && (vg || !M->rheo_ob) &&
                  (wv || M->wall_mode != WALLV_MIRRORED),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
@@ -406,15 +410,6 @@ static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
         if (r) M->pr = r;
         RY_CHECK(err, j && r, RY_ERR_NOMEM, "out of memory (MPS pairs: %zu)", nq);
         M->pq_cap = c;
-    }
-    if (M->pn_cap < n) {
-        const size_t c = n + n / 4 + 16;
-        size_t *g = realloc(M->gend, c * sizeof *g);
-        if (g) M->gend = g;
-        size_t *l = realloc(M->lend, c * sizeof *l);
-        if (l) M->lend = l;
-        RY_CHECK(err, g && l, RY_ERR_NOMEM, "out of memory (MPS pairs)");
-        M->pn_cap = c;
     }
     const double ri = fmin(M->re_g, M->re_l), ro = fmax(M->re_g, M->re_l);
     const double ri2 = ri * ri, ro2 = ro * ro;
@@ -537,19 +532,13 @@ static inline double wall_beta(const ry_sim *sim, const mps *M, size_t i, size_t
 
 static void wall_distances(ry_sim *sim, mps *M) {
     const ry_particles *ps = &sim->ps;
-    const double re2 = M->re_l * M->re_l;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < ps->n; ++i) {
         const int fi = ps->kind[i] == RY_KIND_FLUID;
-        double r2min = INFINITY;
-        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
-            const uint32_t j = M->pj[q];
-            if ((ps->kind[j] == RY_KIND_FLUID) == fi) continue;
-            double dx[3];
-            const double r2 = sep(sim, i, j, dx);
-            if (r2 < re2) r2min = fmin(r2min, r2);
-        }
-        M->wd[i] = isfinite(r2min) ? fmax(sqrt(r2min) - 0.5 * sim->dx, 0.0) : INFINITY;
+        double rmin = INFINITY;
+        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q)
+            if ((ps->kind[M->pj[q]] == RY_KIND_FLUID) != fi) rmin = fmin(rmin, M->pr[q]);
+        M->wd[i] = isfinite(rmin) ? fmax(rmin - 0.5 * sim->dx, 0.0) : INFINITY;
     }
 }
 
@@ -591,15 +580,14 @@ typedef double (*grad_value_fn)(const ry_sim *sim, const mps *M, size_t i, size_
 static int corrected_gradient(const ry_sim *sim, const mps *M, size_t i, int fluid_only,
                               grad_value_fn val, int nc, double grad[6][3]) {
     const int dim = sim->dim;
-    const double re2 = M->re_g * M->re_g;
     double m[3][3] = {{0}}, g[6][3] = {{0}};
     for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
         const uint32_t j = M->pj[q];
         if (fluid_only && sim->ps.kind[j] != RY_KIND_FLUID) continue;
         double dx[3];
         const double r2 = sep(sim, i, j, dx);
-        if (r2 >= re2 || r2 <= 0) continue;
-        const double wr = ry_mps_weight_tamai(sqrt(r2), M->re_g) / r2;
+        if (r2 <= 0) continue;
+        const double wr = ry_mps_weight_tamai(M->pr[q], M->re_g) / r2;
         for (int a = 0; a < dim; ++a)
             for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
         for (int c = 0; c < nc; ++c) {
@@ -831,13 +819,13 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
 /* Divergence of u* (eq. 6) at particle i over fluid and wall neighbours within re_g. */
 static double divergence(const ry_sim *sim, const mps *M, size_t i) {
     const ry_particles *ps = &sim->ps;
-    const double re = M->re_g, re2 = re * re;
+    const double re = M->re_g;
     double s = 0;
     for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
         const uint32_t j = M->pj[q];
         double dx[3];
         const double r2 = sep(sim, i, j, dx);
-        if (r2 >= re2 || r2 <= 0) continue;
+        if (r2 <= 0) continue;
         double du = 0;
         for (int d = 0; d < sim->dim; ++d) {
             const double ui =
@@ -846,7 +834,7 @@ static double divergence(const ry_sim *sim, const mps *M, size_t i) {
                 ps->kind[j] == RY_KIND_FLUID ? ps->f[M->f_vs[d]][j] : ps->f[RY_F_VX + d][j];
             du += (uj - ui) * dx[d];
         }
-        s += du / r2 * ry_mps_weight_tamai(sqrt(r2), re);
+        s += du / r2 * ry_mps_weight_tamai(M->pr[q], re);
     }
     return sim->dim * s / M->n0g;
 }
@@ -857,7 +845,7 @@ static double divergence(const ry_sim *sim, const mps *M, size_t i) {
 static void extrapolate_walls(ry_sim *sim, mps *M) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    const double re = M->re_g, re2 = re * re;
+    const double re = M->re_g;
     double *pw = M->xs + n;
     const double *p = ps->f[RY_F_P];
 #pragma omp parallel for schedule(dynamic, 64)
@@ -867,10 +855,10 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
         double s = 0, sw = 0;
         for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
             const uint32_t j = M->pj[q];
+            if (ps->kind[j] != RY_KIND_FLUID) continue;
             double dx[3];
-            const double r2 = sep(sim, i, j, dx);
-            if (ps->kind[j] != RY_KIND_FLUID || r2 >= re2) continue;
-            const double w = ry_mps_weight_tamai(sqrt(r2), re);
+            sep(sim, i, j, dx);
+            const double w = ry_mps_weight_tamai(M->pr[q], re);
             double gd = 0; /* g . (x_i - x_j) = -g . dx */
             for (int d = 0; d < sim->dim; ++d) gd -= sim->gravity[d] * dx[d];
             s += w * (p[j] + sim->mat[ps->material[j]].density * gd);
@@ -899,7 +887,7 @@ static void csf_dirichlet(ry_sim *sim, mps *M) {
     const size_t n = ps->n;
     double *pd = M->pd, *tmp = M->pd + n; /* the curvature's work space is free after it */
     ry_st_curvature(&M->st, sim, pd);
-    const double re = M->re_g, re2 = re * re;
+    const double re = M->re_g;
     for (int pass = 0; pass < M->csf_smooth; ++pass) {
 #pragma omp parallel for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
@@ -908,12 +896,9 @@ static void csf_dirichlet(ry_sim *sim, mps *M) {
             double ks = pd[i], ws = 1.0;
             for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
                 const uint32_t j = M->pj[q];
-                double dx[3];
-                const double r2 = sep(sim, i, j, dx);
-                if (M->role[j] != ROLE_SURFACE || ps->kind[j] != RY_KIND_FLUID || r2 >= re2 ||
-                    r2 <= 0)
+                if (M->role[j] != ROLE_SURFACE || ps->kind[j] != RY_KIND_FLUID || M->pr[q] <= 0)
                     continue;
-                const double w = ry_mps_weight_tamai(sqrt(r2), re);
+                const double w = ry_mps_weight_tamai(M->pr[q], re);
                 ks += w * pd[j];
                 ws += w;
             }
@@ -991,7 +976,7 @@ static void correct(ry_sim *sim, mps *M, double dt) {
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
-    const double re = M->re_g, re2 = re * re;
+    const double re = M->re_g;
     const double *p = ps->f[RY_F_P];
     double *gx = M->xs; /* dim per particle */
 #pragma omp parallel for schedule(dynamic, 64)
@@ -1003,19 +988,15 @@ static void correct(ry_sim *sim, mps *M, double dt) {
          * protruding particle, whose larger curvature gives it the larger jump, would lose the
          * difference that pushes it back, and the surface roughens until the drop breaks up. */
         const int own = M->csf_pressure && M->role[i] == ROLE_SURFACE;
-        for (size_t q = sim->nl.offset[i]; M->pmin_on && !own && q < M->gend[i]; ++q) {
-            const uint32_t j = M->pj[q];
-            double dx[3];
-            if (M->role[j] == ROLE_DUMMY || sep(sim, i, j, dx) >= re2) continue;
-            pmin = fmin(pmin, p[j]);
-        }
+        for (size_t q = sim->nl.offset[i]; M->pmin_on && !own && q < M->gend[i]; ++q)
+            if (M->role[M->pj[q]] != ROLE_DUMMY) pmin = fmin(pmin, p[M->pj[q]]);
         double m[3][3] = {{0}}, g[3] = {0, 0, 0}, x[3] = {0, 0, 0};
         for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
             const uint32_t j = M->pj[q];
             double dx[3];
             const double r2 = sep(sim, i, j, dx);
-            if (M->role[j] == ROLE_DUMMY || r2 >= re2 || r2 <= 0) continue;
-            const double w = ry_mps_weight_tamai(sqrt(r2), re), wr = w / r2;
+            if (M->role[j] == ROLE_DUMMY || r2 <= 0) continue;
+            const double w = ry_mps_weight_tamai(M->pr[q], re), wr = w / r2;
             for (int a = 0; a < dim; ++a) {
                 g[a] += wr * (p[j] - pmin) * dx[a];
                 for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
