@@ -43,4 +43,18 @@ double ry_rheology_nu(const ry_rheology *r, double nu_newtonian, double gd);
  * the larger of Carreau's two plateaus. */
 double ry_rheology_nu_max(const ry_rheology *r, double nu_newtonian);
 
+/* The symmetric polymer stress is stored by components, ry_tau_count(dim) of them: in 2D
+ * xx, yy, xy; in 3D xx, yy, zz, xy, xz, yz. Component k is tau_ab with (a, b) from
+ * ry_tau_index, and its field is named ry_tau_name (tau_xx, ...). */
+int ry_tau_count(int dim);
+void ry_tau_index(int dim, int k, int *a, int *b);
+const char *ry_tau_name(int dim, int k);
+/* One step of the Oldroyd-B equation at a particle, tau (ry_tau_count components) in place:
+ * tau' = (tau + dt (L tau + tau L^T + 2 eta_p D / lambda)) / (1 + dt / lambda), with L the
+ * velocity gradient (3 x 3 row-major, L_ab = du_a/dx_b), D its symmetric part and eta_p the
+ * polymer's dynamic viscosity: the upper-convected terms explicit and the relaxation implicit,
+ * so that the update is stable for any dt against lambda. */
+void ry_oldroyd_b_step(int dim, const double L[9], double eta_p, double lambda, double dt,
+                       double *tau);
+
 #endif

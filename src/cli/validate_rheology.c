@@ -1,7 +1,7 @@
-/* ryushi validate rheology: non-Newtonian MPS against analytic channel flows (docs/rheology.md):
- * steady power-law and Carreau Poiseuille profiles, and the start-up of Poiseuille flow of an
- * Oldroyd-B fluid, at 20 and 40 particles across (--quick: 20). Tables on stdout and in
- * rheology.md, plots in rheology.png. */
+/* ryushi validate rheology: non-Newtonian MPS and WCSPH against analytic channel flows
+ * (docs/rheology.md): steady power-law and Carreau Poiseuille profiles, and the start-up of
+ * Poiseuille flow of an Oldroyd-B fluid, at 20 and 40 particles across (--quick: 20). Tables on
+ * stdout and in rheology.md, plots in rheology.png. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -16,16 +16,25 @@
 #define CH 1.0e-3 /* channel width of the cases [m] */
 #define MAXROWS 128
 
-/* Runs case_rel at n particles across into out/sub, keeping the simulation and its series. */
-static ry_status run_at(const char *root, const char *out, const char *case_rel, const char *sub,
-                        int across, ry_table *series, ry_sim *sim, ry_run_stats *stats,
+/* A scheme the channels run with: its label, the prefix of its case files (cases/PREFIX_*.yaml)
+ * and the end time of its steady runs (0: the case's). */
+typedef struct scheme_def {
+    const char *label, *prefix;
+    double steady_end;
+} scheme_def;
+
+/* Runs the scheme's case NAME at n particles across into out/PREFIX_NAME_N, keeping the
+ * simulation and its series; end > 0 overrides the end time. */
+static ry_status run_at(const char *root, const char *out, const scheme_def *sd, const char *name,
+                        double end, int across, ry_table *series, ry_sim *sim, ry_run_stats *stats,
                         ry_error *err) {
-    char cpath[4096], odir[4096], spath[4200], sp[64];
-    snprintf(cpath, sizeof cpath, "%s/%s", root, case_rel);
-    snprintf(odir, sizeof odir, "%s/%s_%d", out, sub, across);
+    char cpath[4096], odir[4096], spath[4200], sp[64], te[64];
+    snprintf(cpath, sizeof cpath, "%s/cases/%s_%s.yaml", root, sd->prefix, name);
+    snprintf(odir, sizeof odir, "%s/%s_%s_%d", out, sd->prefix, name, across);
     snprintf(sp, sizeof sp, "spacing=%.17g", CH / across);
-    const char *sets[] = {sp, "output.vtk=false"};
-    RY_TRY(ry_run_case_file(cpath, 2, sets, odir, sim, stats, err));
+    snprintf(te, sizeof te, "time.end=%.17g", end);
+    const char *sets[] = {sp, "output.vtk=false", te};
+    RY_TRY(ry_run_case_file(cpath, end > 0 ? 3 : 2, sets, odir, sim, stats, err));
     snprintf(spath, sizeof spath, "%s/series.csv", odir);
     ry_status st = ry_table_read(series, spath, err);
     if (st != RY_OK) ry_sim_free(sim);
@@ -33,7 +42,7 @@ static ry_status run_at(const char *root, const char *out, const char *case_rel,
 }
 
 typedef struct steady_case {
-    const char *name, *file, *sub;
+    const char *name, *file; /* file: the case's name after the scheme's prefix */
     double g;
 } steady_case;
 
@@ -45,13 +54,14 @@ static double steady_ref(const steady_case *sc, const ry_rheology *r, double s) 
 
 /* A steady channel flow at one resolution: RMS and centreline errors, a row of md, and the
  * profile into the plot panel. */
-static void steady_run(const char *root, const char *out, const steady_case *sc, int across,
-                       FILE *md, ry_plot *plot, int panel, int first, int *failures) {
+static void steady_run(const char *root, const char *out, const scheme_def *sd,
+                       const steady_case *sc, int across, FILE *md, ry_plot *plot, int panel,
+                       int marker, int analytic, int *failures) {
     ry_error err = {0};
     ry_table s;
     ry_sim sim;
     ry_run_stats stats;
-    if (run_at(root, out, sc->file, sc->sub, across, &s, &sim, &stats, &err) != RY_OK) {
+    if (run_at(root, out, sd, sc->file, sd->steady_end, across, &s, &sim, &stats, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", err.msg);
         ++*failures;
         return;
@@ -72,12 +82,14 @@ static void steady_run(const char *root, const char *out, const steady_case *sc,
     const double rms = rows ? sqrt(s2 / rows) : NAN;
     const double centre = umax / steady_ref(sc, r, 0.5 * l0) - 1;
     const double pss = stats.wall_s > 0 ? (double)sim.ps.n * stats.steps / stats.wall_s : 0;
-    printf("  %-10s %3d across: u_c %.3f mm/s, centreline %+.2f %%, RMS %.2f %%, largest %.2f %% "
-           "(%ld steps, %.2e particle-steps/s)\n",
-           sc->name, across, 1e3 * uc, 100 * centre, 100 * rms, 100 * worst, stats.steps, pss);
+    printf("  %-5s %-10s %3d across: u_c %.3f mm/s, centreline %+.2f %%, RMS %.2f %%, largest "
+           "%.2f %% (%ld steps, %.2e particle-steps/s)\n",
+           sd->label, sc->name, across, 1e3 * uc, 100 * centre, 100 * rms, 100 * worst, stats.steps,
+           pss);
     if (md)
-        fprintf(md, "| %s | %d | %zu | %.3f | %+.2f %% | %.2f %% | %.2f %% | %ld |\n", sc->name,
-                across, sim.ps.n, 1e3 * uc, 100 * centre, 100 * rms, 100 * worst, stats.steps);
+        fprintf(md, "| %s | %s | %d | %zu | %.3f | %+.2f %% | %.2f %% | %.2f %% | %ld |\n",
+                sd->label, sc->name, across, sim.ps.n, 1e3 * uc, 100 * centre, 100 * rms,
+                100 * worst, stats.steps);
     char label[64];
     double ymm[MAXROWS], umm[MAXROWS], uamm[MAXROWS];
     for (size_t k = 0; k < rows; ++k) {
@@ -86,17 +98,17 @@ static void steady_run(const char *root, const char *out, const steady_case *sc,
         uamm[k] = 1e3 * ua[k];
     }
     if (plot) {
-        snprintf(label, sizeof label, "MPS, %d across", across);
-        ry_plot_series(plot, panel, label, rows, ymm, umm,
-                       ry_plot_style_markers(first ? RY_PLOT_MARKER_CIRCLE : RY_PLOT_MARKER_SQUARE),
-                       &err);
-        if (!first)
+        snprintf(label, sizeof label, "%s, %d across", sd->label, across);
+        ry_plot_series(plot, panel, label, rows, ymm, umm, ry_plot_style_markers(marker), &err);
+        if (analytic)
             ry_plot_series(plot, panel, "analytic", rows, ymm, uamm, ry_plot_style_line(), &err);
     }
     char what[160];
-    snprintf(what, sizeof what, "%s, %d across: profile RMS within 3 %% of u_c", sc->name, across);
+    snprintf(what, sizeof what, "%s %s, %d across: profile RMS within 3 %% of u_c", sd->label,
+             sc->name, across);
     ry_cli_check(what, rms < 0.03, failures);
-    snprintf(what, sizeof what, "%s, %d across: centreline within 3 %%", sc->name, across);
+    snprintf(what, sizeof what, "%s %s, %d across: centreline within 3 %%", sd->label, sc->name,
+             across);
     ry_cli_check(what, fabs(centre) < 0.03, failures);
     ry_sim_free(&sim);
     ry_table_free(&s);
@@ -104,14 +116,14 @@ static void steady_run(const char *root, const char *out, const steady_case *sc,
 
 /* Oldroyd-B start-up at one resolution: the largest speed against the analytic velocity of the
  * rows next to the centreline at every output. */
-static void startup_run(const char *root, const char *out, int across, FILE *md, ry_plot *plot,
-                        int panel, int first, int *failures) {
+static void startup_run(const char *root, const char *out, const scheme_def *sd, int across,
+                        FILE *md, ry_plot *plot, int panel, int marker, int analytic,
+                        int *failures) {
     ry_error err = {0};
     ry_table s;
     ry_sim sim;
     ry_run_stats stats;
-    if (run_at(root, out, "cases/mps_oldroyd_b_startup.yaml", "oldroyd_b", across, &s, &sim, &stats,
-               &err) != RY_OK) {
+    if (run_at(root, out, sd, "oldroyd_b_startup", 0, across, &s, &sim, &stats, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", err.msg);
         ++*failures;
         return;
@@ -134,27 +146,28 @@ static void startup_run(const char *root, const char *out, int across, FILE *md,
     }
     const double rms = nr ? sqrt(s2 / nr) : NAN;
     const double pss = stats.wall_s > 0 ? (double)sim.ps.n * stats.steps / stats.wall_s : 0;
-    printf("  Oldroyd-B %3d across: peak %.2f mm/s at %.2f ms (analytic %.2f at %.2f), RMS %.2f "
-           "%%, largest %.2f %% of the peak (%ld steps, %.2e particle-steps/s)\n",
-           across, peak, tpeak, peak_ref, tpeak_ref, 100 * rms / peak_ref, 100 * worst / peak_ref,
-           stats.steps, pss);
+    printf("  %-5s Oldroyd-B %3d across: peak %.2f mm/s at %.2f ms (analytic %.2f at %.2f), RMS "
+           "%.2f %%, largest %.2f %% of the peak (%ld steps, %.2e particle-steps/s)\n",
+           sd->label, across, peak, tpeak, peak_ref, tpeak_ref, 100 * rms / peak_ref,
+           100 * worst / peak_ref, stats.steps, pss);
     if (md)
-        fprintf(md, "| %d | %zu | %.2f at %.2f ms | %.2f at %.2f ms | %.2f %% | %.2f %% | %ld |\n",
-                across, sim.ps.n, peak, tpeak, peak_ref, tpeak_ref, 100 * rms / peak_ref,
+        fprintf(md,
+                "| %s | %d | %zu | %.2f at %.2f ms | %.2f at %.2f ms | %.2f %% | %.2f %% | %ld |\n",
+                sd->label, across, sim.ps.n, peak, tpeak, peak_ref, tpeak_ref, 100 * rms / peak_ref,
                 100 * worst / peak_ref, stats.steps);
     if (plot && t && v && va) {
         char label[64];
-        snprintf(label, sizeof label, "MPS, %d across", across);
-        ry_plot_series(plot, panel, label, nr, t, v,
-                       ry_plot_style_markers(first ? RY_PLOT_MARKER_CIRCLE : RY_PLOT_MARKER_SQUARE),
-                       &err);
-        if (!first) ry_plot_series(plot, panel, "analytic", nr, t, va, ry_plot_style_line(), &err);
+        snprintf(label, sizeof label, "%s, %d across", sd->label, across);
+        ry_plot_series(plot, panel, label, nr, t, v, ry_plot_style_markers(marker), &err);
+        if (analytic)
+            ry_plot_series(plot, panel, "analytic", nr, t, va, ry_plot_style_line(), &err);
     }
     char what[160];
-    snprintf(what, sizeof what, "Oldroyd-B, %d across: within 4 %% of the peak at every output",
-             across);
+    snprintf(what, sizeof what, "%s Oldroyd-B, %d across: within 4 %% of the peak at every output",
+             sd->label, across);
     ry_cli_check(what, worst < 0.04 * peak_ref, failures);
-    snprintf(what, sizeof what, "Oldroyd-B, %d across: first peak within 5 %%", across);
+    snprintf(what, sizeof what, "%s Oldroyd-B, %d across: first peak within 5 %%", sd->label,
+             across);
     ry_cli_check(what, fabs(peak / peak_ref - 1) < 0.05, failures);
     free(t);
     free(v);
@@ -180,22 +193,31 @@ int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *
         ry_plot_panel(plot, 2, "Oldroyd-B start-up, E = 1, beta = 0.1", "t (ms)",
                       "centreline u (mm/s)", &err);
     }
-    const steady_case sc[2] = {
-        {"power law", "cases/mps_power_law_poiseuille.yaml", "power_law", 6.9},
-        {"Carreau", "cases/mps_carreau_poiseuille.yaml", "carreau", 40.0}};
-    printf("Non-Newtonian channel flows, MPS (cases/mps_*_poiseuille.yaml, "
-           "cases/mps_oldroyd_b_startup.yaml)\n");
+    const steady_case sc[2] = {{"power law", "power_law_poiseuille", 6.9},
+                               {"Carreau", "carreau_poiseuille", 40.0}};
+    /* WCSPH's viscosity is explicit (dt <= h^2 / (8 nu)); its steady runs stop at 20 ms, where
+     * the centreline velocity has settled to 0.2 %. */
+    const scheme_def sd[2] = {{"MPS", "mps", 0}, {"WCSPH", "sph", 0.02}};
+    enum { NSCHEME = 2 };
+    printf("Non-Newtonian channel flows, MPS and WCSPH (cases/mps_*.yaml, cases/sph_*.yaml)\n");
     if (md)
-        fprintf(md, "| model | across | particles | u_c [mm/s] | centreline | RMS | largest | "
-                    "steps |\n|---|---|---|---|---|---|---|---|\n");
+        fprintf(md, "| scheme | model | across | particles | u_c [mm/s] | centreline | RMS | "
+                    "largest | steps |\n|---|---|---|---|---|---|---|---|---|\n");
+    /* markers: one per scheme and resolution; the analytic curve once per panel */
+    const int mk[NSCHEME][2] = {{RY_PLOT_MARKER_CIRCLE, RY_PLOT_MARKER_SQUARE},
+                                {RY_PLOT_MARKER_TRIANGLE, RY_PLOT_MARKER_DIAMOND}};
     for (int c = 0; c < 2; ++c)
-        for (int k = 0; k < nres; ++k)
-            steady_run(root, out, &sc[c], res[k], md, plot, c, k == 0 && nres > 1, failures);
+        for (int m = 0; m < NSCHEME; ++m)
+            for (int k = 0; k < nres; ++k)
+                steady_run(root, out, &sd[m], &sc[c], res[k], md, plot, c, mk[m][k],
+                           m == NSCHEME - 1 && k == nres - 1, failures);
     if (md)
-        fprintf(md, "\n| across | particles | peak [mm/s] | analytic [mm/s] | RMS / peak | "
-                    "largest / peak | steps |\n|---|---|---|---|---|---|---|\n");
-    for (int k = 0; k < nres; ++k)
-        startup_run(root, out, res[k], md, plot, 2, k == 0 && nres > 1, failures);
+        fprintf(md, "\n| scheme | across | particles | peak [mm/s] | analytic [mm/s] | RMS / peak "
+                    "| largest / peak | steps |\n|---|---|---|---|---|---|---|---|\n");
+    for (int m = 0; m < NSCHEME; ++m)
+        for (int k = 0; k < nres; ++k)
+            startup_run(root, out, &sd[m], res[k], md, plot, 2, mk[m][k],
+                        m == NSCHEME - 1 && k == nres - 1, failures);
     if (md && ry_atomic_commit(&af, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", err.msg);
         ++*failures;

@@ -84,3 +84,41 @@ double ry_rheology_nu_max(const ry_rheology *r, double nu_newtonian) {
         return nu_newtonian;
     }
 }
+
+/* The symmetric polymer stress by components: in 2D xx, yy, xy; in 3D xx, yy, zz, xy, xz, yz. */
+static const int tau_a[6] = {0, 1, 2, 0, 0, 1}, tau_b[6] = {0, 1, 2, 1, 2, 2};
+
+int ry_tau_count(int dim) {
+    return dim == 2 ? 3 : 6;
+}
+
+void ry_tau_index(int dim, int k, int *a, int *b) {
+    const int c = dim == 2 && k == 2 ? 3 : k;
+    *a = tau_a[c];
+    *b = tau_b[c];
+}
+
+const char *ry_tau_name(int dim, int k) {
+    static const char *const names[6] = {"tau_xx", "tau_yy", "tau_zz",
+                                         "tau_xy", "tau_xz", "tau_yz"};
+    return names[dim == 2 && k == 2 ? 3 : k];
+}
+
+void ry_oldroyd_b_step(int dim, const double L[9], double eta_p, double lambda, double dt,
+                       double *tau) {
+    const int nt = ry_tau_count(dim);
+    double t[3][3] = {{0}};
+    for (int k = 0; k < nt; ++k) {
+        int a, b;
+        ry_tau_index(dim, k, &a, &b);
+        t[a][b] = t[b][a] = tau[k];
+    }
+    for (int k = 0; k < nt; ++k) {
+        int a, b;
+        ry_tau_index(dim, k, &a, &b);
+        double up = 0; /* (L tau + tau L^T)_ab */
+        for (int c = 0; c < dim; ++c) up += L[3 * a + c] * t[c][b] + t[a][c] * L[3 * b + c];
+        const double dab = 0.5 * (L[3 * a + b] + L[3 * b + a]);
+        tau[k] = (t[a][b] + dt * (up + 2.0 * eta_p * dab / lambda)) / (1.0 + dt / lambda);
+    }
+}

@@ -58,7 +58,7 @@ typedef struct mps {
     int rheo_gnf;              /* some material's viscosity follows the shear rate */
     int rheo_ob;               /* some material is Oldroyd-B */
     int f_nu, f_gd;            /* fields with rheology: viscosity [m^2/s], shear rate [1/s] */
-    int f_tau[6];              /* Oldroyd-B polymer stress [Pa], components as tau_comp */
+    int f_tau[6];              /* Oldroyd-B polymer stress [Pa], components as ry_tau_index */
     double *vgrad;             /* velocity gradient, dim x dim per particle (Oldroyd-B) */
     int wall_mode;             /* walls in the viscous terms: own velocity, mirrored, slip */
     double *wd;                /* with it: distance of each particle to the wall surface */
@@ -542,15 +542,7 @@ static void wall_distances(ry_sim *sim, mps *M) {
     }
 }
 
-/* Rheology (docs/rheology.md). The symmetric polymer stress is stored by components: in 2D
- * xx, yy, xy; in 3D xx, yy, zz, xy, xz, yz. */
-static const int tau_a[6] = {0, 1, 2, 0, 0, 1}, tau_b[6] = {0, 1, 2, 1, 2, 2};
-static int tau_count(int dim) {
-    return dim == 2 ? 3 : 6;
-}
-static int tau_comp(int dim, int k) { /* storage slot k -> index into tau_a/tau_b */
-    return dim == 2 && k == 2 ? 3 : k;
-}
+/* Rheology (docs/rheology.md); the polymer stress by components as ry_tau_index says. */
 
 static ry_status rheology_init(ry_sim *sim, mps *M, ry_error *err) {
     M->f_nu = M->f_gd = -1;
@@ -563,10 +555,8 @@ static ry_status rheology_init(ry_sim *sim, mps *M, ry_error *err) {
     ry_particles *ps = &sim->ps;
     RY_TRY(ry_particles_add_field(ps, "viscosity", "m^2/s", -1, RY_FIELD_OUTPUT, &M->f_nu, err));
     RY_TRY(ry_particles_add_field(ps, "shear_rate", "1/s", -1, RY_FIELD_OUTPUT, &M->f_gd, err));
-    static const char *const names[6] = {"tau_xx", "tau_yy", "tau_zz",
-                                         "tau_xy", "tau_xz", "tau_yz"};
-    for (int k = 0; M->rheo_ob && k < tau_count(sim->dim); ++k)
-        RY_TRY(ry_particles_add_field(ps, names[tau_comp(sim->dim, k)], "Pa", -1,
+    for (int k = 0; M->rheo_ob && k < ry_tau_count(sim->dim); ++k)
+        RY_TRY(ry_particles_add_field(ps, ry_tau_name(sim->dim, k), "Pa", -1,
                                       RY_FIELD_STATE | RY_FIELD_OUTPUT, &M->f_tau[k], err));
     return RY_OK;
 }
@@ -624,7 +614,7 @@ static double tau_value(const ry_sim *sim, const mps *M, size_t i, size_t j, int
  * dt). */
 static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
     ry_particles *ps = &sim->ps;
-    const int dim = sim->dim, nt = tau_count(dim);
+    const int dim = sim->dim, nt = ry_tau_count(dim);
     const size_t n = ps->n;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
@@ -659,7 +649,8 @@ static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
         corrected_gradient(sim, M, i, 1, tau_value, nt, G);
         double div[3] = {0, 0, 0};
         for (int k = 0; k < nt; ++k) {
-            const int a = tau_a[tau_comp(dim, k)], b = tau_b[tau_comp(dim, k)];
+            int a, b;
+            ry_tau_index(dim, k, &a, &b);
             div[a] += G[k][b];
             if (a != b) div[b] += G[k][a];
         }
@@ -671,21 +662,11 @@ static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
     for (size_t i = 0; i < n; ++i) {
         const ry_material *mat = &sim->mat[ps->material[i]];
         if (ps->kind[i] != RY_KIND_FLUID || mat->rheo.model != RY_RHEO_OLDROYD_B) continue;
-        const double *L = &M->vgrad[9 * i], lam = mat->rheo.relaxation;
-        const double eta_p = mat->density * mat->rheo.nu_polymer;
-        double t[3][3];
-        for (int k = 0; k < nt; ++k) {
-            const int a = tau_a[tau_comp(dim, k)], b = tau_b[tau_comp(dim, k)];
-            t[a][b] = t[b][a] = ps->f[M->f_tau[k]][i];
-        }
-        for (int k = 0; k < nt; ++k) {
-            const int a = tau_a[tau_comp(dim, k)], b = tau_b[tau_comp(dim, k)];
-            double up = 0; /* (L tau + tau L^T)_ab */
-            for (int c = 0; c < dim; ++c) up += L[3 * a + c] * t[c][b] + t[a][c] * L[3 * b + c];
-            const double dab = 0.5 * (L[3 * a + b] + L[3 * b + a]);
-            ps->f[M->f_tau[k]][i] =
-                (t[a][b] + dt * (up + 2.0 * eta_p * dab / lam)) / (1.0 + dt / lam);
-        }
+        double t[6];
+        for (int k = 0; k < nt; ++k) t[k] = ps->f[M->f_tau[k]][i];
+        ry_oldroyd_b_step(dim, &M->vgrad[9 * i], mat->density * mat->rheo.nu_polymer,
+                          mat->rheo.relaxation, dt, t);
+        for (int k = 0; k < nt; ++k) ps->f[M->f_tau[k]][i] = t[k];
     }
     for (int k = 0; sim->par && k < nt; ++k) sim->par->sync(sim, ps->f[M->f_tau[k]], 1);
 }

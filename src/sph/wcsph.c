@@ -34,6 +34,7 @@
 #include "core/guard_check.h"
 #include "ryushi/sim.h"
 #include "sph/sph_pairs.h"
+#include "sph/sph_rheology.h"
 #include "sph/wcsph.h"
 
 enum { DENS_CONTINUITY, DENS_SUMMATION };
@@ -43,6 +44,7 @@ enum { WALL_NO_SLIP, WALL_FREE_SLIP };
 
 typedef struct wcsph {
     int density, eos, diffusion, wall, laminar, energy, variable_h;
+    double mu_corr; /* laminar viscosity factor (scheme.viscosity_correction: lattice) */
     double c0, gamma, p_background, alpha, beta, delta;
     double vmax, amax, numax, hmax; /* from the last force evaluation */
     int have_forces;
@@ -70,7 +72,14 @@ typedef struct wcsph {
     int f_vt[3], f_abg[3]; /* transport velocity, background-pressure acceleration */
     double *Bm;            /* Tait coefficient per material */
     double *rho0m;         /* reference density per material */
+    ry_sph_rheo rheo;      /* non-Newtonian materials (list loop only) */
+    ry_pair_cache pc;      /* its kernel gradients */
+    double *vol;           /* its particle volumes m / rho */
+    size_t vol_cap;
 } wcsph;
+
+/* Kinds that move under the fluid equations. */
+static const int MOBILE[RY_KIND_COUNT] = {[RY_KIND_FLUID] = 1, [RY_KIND_OUTLET] = 1};
 
 /* Density in hydrostatic equilibrium under gravity, free surface half a spacing above the
  * highest fluid particle: rho = rho0 (1 + rho0 g (H - z) / B)^(1/gamma) for Tait. */
@@ -82,7 +91,31 @@ static const char *const diffusion_names[] = {"none", "molteni", "fourtakas", NU
 static const char *const wall_names[] = {"no_slip", "free_slip", NULL};
 enum { LOOP_AUTO, LOOP_CELLS, LOOP_LIST };
 static const char *const loop_names[] = {"auto", "cells", "list", NULL};
+static const char *const viscosity_correction_names[] = {"none", "lattice", NULL};
 static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why);
+
+/* The laminar viscous term applied to u = |x|^2 / (2 d) (whose Laplacian is 1) at a particle of
+ * the full lattice: sum_j V 2 F_j r_j^2 / (r_j^2 + 0.01 h^2) (u_i - u_j), F = (dW/dr) / r (the
+ * transport-velocity form has no 0.01 h^2). The continuum value is 1; on the lattice it is not
+ * (Wendland C2 at h = 1.4 dx in 2D: 0.979), which makes a Poiseuille flow run fast by an error
+ * that does not shrink with the spacing (docs/wcsph.md); scheme.viscosity_correction: lattice
+ * divides the viscosity by it. */
+static double laminar_lattice_factor(const ry_sim *sim, int tvf) {
+    const ry_kernel *k = &sim->kernel;
+    const int dim = sim->dim, m = (int)ceil(k->radius / sim->dx) + 1;
+    const double dx = sim->dx, vol = dim > 2 ? dx * dx * dx : dx * dx;
+    const double eta2 = tvf ? 0.0 : 0.01 * k->h * k->h;
+    double s = 0;
+    for (int a = -m; a <= m; ++a)
+        for (int b = -m; b <= m; ++b)
+            for (int c = (dim > 2 ? -m : 0); c <= (dim > 2 ? m : 0); ++c) {
+                const double r2 = dx * dx * (double)(a * a + b * b + c * c), r = sqrt(r2);
+                if (r <= 0 || r >= k->radius) continue;
+                const double f = ry_kernel_dwdr(k, r) / r;
+                s += vol * 2.0 * f * r2 / (r2 + eta2) * (-r2 / (2.0 * dim));
+            }
+    return s;
+}
 
 static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
     wcsph *w = calloc(1, sizeof *w);
@@ -107,6 +140,10 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     RY_TRY(ry_case_bool(c, "scheme.variable_h", &no, &w->variable_h, err));
     RY_TRY(ry_case_choice(c, "scheme.wall", "no_slip", wall_names, &w->wall, err));
     RY_TRY(ry_case_bool(c, "scheme.transport_velocity", &no, &w->tvf, err));
+    int corr;
+    RY_TRY(ry_case_choice(c, "scheme.viscosity_correction", "none", viscosity_correction_names,
+                          &corr, err));
+    w->mu_corr = corr ? 1.0 / laminar_lattice_factor(sim, w->tvf) : 1.0;
     RY_TRY(ry_case_bool(c, "scheme.wall_repulsion", &yes, &w->repulse, err));
     double r0 = 0.75;
     RY_TRY(ry_case_double(c, "scheme.wall_repulsion_radius", &r0, 0.1, 1.0, &w->rep_r0, err));
@@ -130,6 +167,15 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     if (w->variable_h)
         RY_CHECK(err, w->density == DENS_CONTINUITY, RY_ERR_INPUT,
                  "%s: key 'scheme.variable_h': needs scheme.density: continuity",
+                 ry_case_where(c, "scheme.variable_h", where, sizeof where));
+    RY_TRY(ry_sph_rheo_init(&w->rheo, sim, err));
+    if (w->rheo.on)
+        RY_CHECK(err, w->laminar, RY_ERR_INPUT,
+                 "%s: key 'scheme.laminar_viscosity': a non-Newtonian material needs it true",
+                 ry_case_where(c, "scheme.laminar_viscosity", where, sizeof where));
+    if (w->rheo.on)
+        RY_CHECK(err, !w->variable_h, RY_ERR_INPUT,
+                 "%s: key 'scheme.variable_h': not available with a non-Newtonian material",
                  ry_case_where(c, "scheme.variable_h", where, sizeof where));
     int loop;
     RY_TRY(ry_case_choice(c, "scheme.pair_loop", "auto", loop_names, &loop, err));
@@ -223,6 +269,9 @@ static void wcsph_free(void *state) {
     free(w->rng);
     free(w->wet);
     free(w->cell_fluid);
+    ry_sph_rheo_free(&w->rheo);
+    ry_pair_cache_free(&w->pc);
+    free(w->vol);
     free(w);
 }
 
@@ -625,7 +674,10 @@ static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
 /* mu_i = rho_i nu (laminar viscosity) and the viscous coupling of particle i: fluid, open-
  * boundary buffers, and no-slip walls (through their ghost velocity). */
 static inline double pack_mu(const ry_sim *sim, const wcsph *w, size_t i) {
-    return w->laminar ? sim->ps.f[RY_F_RHO][i] * sim->mat[sim->ps.material[i]].viscosity : 0.0;
+    if (!w->laminar) return 0.0;
+    const double nu = w->rheo.on ? sim->ps.f[w->rheo.f_nu][i] /* from the shear rate */
+                                 : sim->mat[sim->ps.material[i]].viscosity;
+    return sim->ps.f[RY_F_RHO][i] * nu * w->mu_corr;
 }
 static inline double pack_visc(const ry_sim *sim, const wcsph *w, size_t i) {
     return sim->ps.kind[i] != RY_KIND_WALL || w->wall == WALL_NO_SLIP ? 1.0 : 0.0;
@@ -1162,6 +1214,7 @@ static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why) {
            : w->variable_h || w->energy                               ? "no variable_h or energy"
            : w->tvf                                                   ? "no transport_velocity"
            : sim->nopen > 0                                           ? "no open boundaries"
+           : w->rheo.on                                               ? "Newtonian materials"
                                                                       : NULL;
     return *why == NULL;
 }
@@ -1643,6 +1696,41 @@ static void global_maxima(ry_sim *sim, force_out *res) {
     res->vmax2 = sim->par->max(sim, v2);
 }
 
+/* Non-Newtonian materials: velocity gradient, viscosity and stress divergence at the current
+ * state (sph_rheology.h); walls enter with the velocity the viscous terms give them. */
+static ry_status rheology_rates(ry_sim *sim, wcsph *w, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    if (w->vol_cap < n) {
+        double *v = realloc(w->vol, n * sizeof *v);
+        RY_CHECK(err, v != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
+        w->vol = v;
+        w->vol_cap = n;
+    }
+    for (size_t i = 0; i < n; ++i) w->vol[i] = ps->f[RY_F_MASS][i] / ps->f[RY_F_RHO][i];
+    RY_TRY(ry_pair_cache_fill(&w->pc, sim, MOBILE, err));
+    const double *vg[3];
+    for (int d = 0; d < 3; ++d) vg[d] = ps->f[w->f_vg[d]];
+    return ry_sph_rheo_rates(&w->rheo, sim, &w->pc, MOBILE, w->vol,
+                             w->wall == WALL_NO_SLIP ? vg : NULL, err);
+}
+
+/* Adds the polymer stress divergence to the fluid's acceleration. */
+static void polymer_forces(ry_sim *sim, const wcsph *w, force_out *res) {
+    ry_particles *ps = &sim->ps;
+    double amax2 = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (!MOBILE[ps->kind[i]]) continue;
+        double a2 = 0;
+        for (int d = 0; d < sim->dim; ++d) {
+            ps->f[RY_F_AX + d][i] += w->rheo.acc[3 * i + d];
+            a2 += ps->f[RY_F_AX + d][i] * ps->f[RY_F_AX + d][i];
+        }
+        amax2 = fmax(amax2, a2);
+    }
+    res->amax2 = amax2;
+}
+
 /* Evaluates all rates at the current (predicted) state. */
 static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
@@ -1669,10 +1757,12 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
         fast_wall_pass(sim, w);
     } else {
         wall_pass(sim, w);
+        if (w->rheo.on) RY_TRY(rheology_rates(sim, w, err));
         RY_TRY(prepare_pairs(sim, w, err));
     }
     force_out res;
     RY_TRY(fluid_forces(sim, w, &res, err));
+    if (w->rheo.ob) polymer_forces(sim, w, &res);
     if (sim->par) global_maxima(sim, &res);
     sim->scheme_bytes = wcsph_bytes(w);
     w->amax = sqrt(res.amax2);
@@ -1697,6 +1787,7 @@ static ry_status wcsph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     double numax = 0;
     for (int m = 0; m < sim->nmat; ++m) numax = fmax(numax, sim->mat[m].viscosity);
     if (numax > 0 && w->laminar) t = fmin(t, 0.125 * h * h / numax);
+    if (w->laminar) t = fmin(t, ry_sph_rheo_dt(&w->rheo, sim, MOBILE, h, sim->cfl));
     *dt = t;
     return RY_OK;
 }
@@ -1723,6 +1814,12 @@ static inline __attribute__((always_inline)) void kick_drift(ry_sim *sim, const 
             ps->f[RY_F_X + d][i] += dt * vt;
         } else {
             ps->f[RY_F_X + d][i] += dt * vh;
+        }
+        if (sim->box.periodic[d]) { /* back into the periodic box */
+            const double lo = sim->box.lo[d], L = sim->box.hi[d] - lo;
+            double *x = &ps->f[RY_F_X + d][i];
+            if (*x < lo) *x += L;
+            if (*x >= lo + L) *x -= L;
         }
         ps->f[RY_F_VX + d][i] = vh + 0.5 * dt * ps->f[RY_F_AX + d][i];
     }
@@ -1880,14 +1977,14 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     const double *xref[3];
     for (int d = 0; d < 3; ++d) xref[d] = ps->f[sim->f_xref + (d < dim ? d : 0)];
     double drift2 = 0;
+    const int periodic = is_periodic(sim);
 #pragma omp parallel for schedule(static) reduction(max : drift2)
     for (size_t i = 0; i < n; ++i) {
         kick_drift(sim, w, i, dt, cont);
-        double r2 = 0;
-        for (int d = 0; d < dim; ++d) {
-            const double e = ps->f[RY_F_X + d][i] - xref[d][i];
-            r2 += e * e;
-        }
+        double e[3] = {0, 0, 0}, r2 = 0;
+        for (int d = 0; d < dim; ++d) e[d] = ps->f[RY_F_X + d][i] - xref[d][i];
+        if (periodic) ry_box_min_image(&sim->box, e); /* a wrapped particle moved little */
+        for (int d = 0; d < dim; ++d) r2 += e[d] * e[d];
         drift2 = r2 > drift2 ? r2 : drift2;
     }
     sim->drift2 = drift2;
@@ -1904,6 +2001,7 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         final_kick(sim, w, i, dt, cont);
         ry_check_tally(&chk, i, dim, inv_rho0[ps->material[i]], &bad, &fluid, &outside);
     }
+    ry_sph_rheo_advance(&w->rheo, sim, MOBILE, dt); /* polymer stress, with L at t + dt */
     sim->check_bad = bad;
     sim->check_fluid = fluid;
     sim->check_outside = outside;

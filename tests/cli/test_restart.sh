@@ -1,8 +1,9 @@
 #!/bin/sh
 # Checkpoints and restart: a run stopped (by step count or by SIGTERM) and continued with
 # --restart ends bitwise identical to an uninterrupted run (VTK files, .pvd, series.csv,
-# profiles), for each scheme (MPS included), with inflow and outflow, on another thread count too; a damaged newest checkpoint is
-# skipped for the one before it; a truncated or corrupted checkpoint is rejected by name.
+# profiles), for each scheme (MPS included, and Oldroyd-B fluids in MPS and WCSPH), with
+# inflow and outflow, on another thread count too; a damaged newest checkpoint is skipped for
+# the one before it; a truncated or corrupted checkpoint is rejected by name.
 # usage: test_restart.sh RYUSHI SOURCE_DIR
 set -u
 RY=$1
@@ -57,6 +58,18 @@ run obpart "$OB" $OBSET --threads 1 --set time.max_steps=250
 "$RY" run "$OB" $OBSET --threads 1 --restart "$T/obpart" > "$T/obpart2.log" 2>&1 ||
     bad "Oldroyd-B restart failed: $(cat "$T/obpart2.log")"
 same "$T/obfull" "$T/obpart" "Oldroyd-B start-up restarted at step 250"
+
+# 1c. The same with WCSPH: the polymer stress and the particle viscosity are part of its state.
+OBS="$SRC/cases/sph_oldroyd_b_startup.yaml"
+# shellcheck disable=SC2086
+run obsfull "$OBS" $OBSET --threads 1
+[ "$rc" -eq 0 ] || bad "uninterrupted WCSPH Oldroyd-B run exited $rc: $(cat "$T/obsfull.log")"
+# shellcheck disable=SC2086
+run obspart "$OBS" $OBSET --threads 1 --set time.max_steps=350
+# shellcheck disable=SC2086
+"$RY" run "$OBS" $OBSET --threads 1 --restart "$T/obspart" > "$T/obspart2.log" 2>&1 ||
+    bad "WCSPH Oldroyd-B restart failed: $(cat "$T/obspart2.log")"
+same "$T/obsfull" "$T/obspart" "WCSPH Oldroyd-B start-up restarted at step 350"
 
 # 2. Periodic checkpoints (every 250 steps, keep 2): restart from the older of the two, after
 # the newest was damaged (truncated).
