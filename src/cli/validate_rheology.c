@@ -1,4 +1,4 @@
-/* ryushi validate rheology: non-Newtonian MPS and WCSPH against analytic channel flows
+/* ryushi validate rheology: non-Newtonian MPS, WCSPH and IISPH against analytic channel flows
  * (docs/rheology.md): steady power-law and Carreau Poiseuille profiles, and the start-up of
  * Poiseuille flow of an Oldroyd-B fluid, at 20 and 40 particles across (--quick: 20). Tables on
  * stdout and in rheology.md, plots in rheology.png. */
@@ -195,17 +195,19 @@ int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *
     }
     const steady_case sc[2] = {{"power law", "power_law_poiseuille", 6.9},
                                {"Carreau", "carreau_poiseuille", 40.0}};
-    /* WCSPH's viscosity is explicit (dt <= h^2 / (8 nu)); its steady runs stop at 20 ms, where
-     * the centreline velocity has settled to 0.2 %. */
-    const scheme_def sd[2] = {{"MPS", "mps", 0}, {"WCSPH", "sph", 0.02}};
-    enum { NSCHEME = 2 };
-    printf("Non-Newtonian channel flows, MPS and WCSPH (cases/mps_*.yaml, cases/sph_*.yaml)\n");
+    /* The viscosity of WCSPH and IISPH is explicit (dt <= 0.125 and 0.045 h^2 / nu); their
+     * steady runs stop at 20 and 15 ms, where the centreline velocity has settled to 0.2 %. */
+    const scheme_def sd[3] = {{"MPS", "mps", 0}, {"WCSPH", "sph", 0.02}, {"IISPH", "iisph", 0.015}};
+    enum { NSCHEME = 3 };
+    printf("Non-Newtonian channel flows, MPS, WCSPH and IISPH (cases/mps_*.yaml, cases/sph_*.yaml, "
+           "cases/iisph_*.yaml)\n");
     if (md)
         fprintf(md, "| scheme | model | across | particles | u_c [mm/s] | centreline | RMS | "
                     "largest | steps |\n|---|---|---|---|---|---|---|---|---|\n");
     /* markers: one per scheme and resolution; the analytic curve once per panel */
     const int mk[NSCHEME][2] = {{RY_PLOT_MARKER_CIRCLE, RY_PLOT_MARKER_SQUARE},
-                                {RY_PLOT_MARKER_TRIANGLE, RY_PLOT_MARKER_DIAMOND}};
+                                {RY_PLOT_MARKER_TRIANGLE, RY_PLOT_MARKER_DIAMOND},
+                                {RY_PLOT_MARKER_CROSS, RY_PLOT_MARKER_PLUS}};
     for (int c = 0; c < 2; ++c)
         for (int m = 0; m < NSCHEME; ++m)
             for (int k = 0; k < nres; ++k)

@@ -169,14 +169,15 @@ static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {
     free(names);
     RY_TRY(st);
     sim->scheme = all[which];
-    /* Non-Newtonian materials are carried by MPS and WCSPH (docs/rheology.md). */
+    /* Non-Newtonian materials are carried by the fluid schemes (docs/rheology.md). */
     const char *name = sim->scheme->name;
-    const int fluid = !strcmp(name, "mps") || !strcmp(name, "wcsph");
+    const int fluid = !strcmp(name, "mps") || !strcmp(name, "wcsph") || !strcmp(name, "iisph");
     for (int m = 0; m < sim->nmat && !fluid; ++m) {
         char k[96], where[256];
         snprintf(k, sizeof k, "materials[%d].rheology.model", m);
         RY_CHECK(err, sim->mat[m].rheo.model == RY_RHEO_NEWTONIAN, RY_ERR_INPUT,
-                 "%s: key '%s': %s is available with schemes mps and wcsph (this case uses %s)",
+                 "%s: key '%s': %s is available with schemes mps, wcsph and iisph (this case uses "
+                 "%s)",
                  ry_case_where(c, k, where, sizeof where), k,
                  ry_rheology_names[sim->mat[m].rheo.model], sim->scheme->name);
     }

@@ -153,14 +153,14 @@ void ry_sph_rheo_advance(ry_sph_rheo *r, ry_sim *sim, const int mobile[RY_KIND_C
 }
 
 double ry_sph_rheo_dt(const ry_sph_rheo *r, const ry_sim *sim, const int mobile[RY_KIND_COUNT],
-                      double h, double cfl) {
+                      double h, double cfl, double cvisc) {
     if (!r->on) return INFINITY;
     const ry_particles *ps = &sim->ps;
     double numax = 0;
     for (size_t i = 0; i < ps->n; ++i)
         if (mobile[ps->kind[i]]) numax = fmax(numax, ps->f[r->f_nu][i]);
     if (sim->par) numax = sim->par->max((ry_sim *)sim, numax);
-    double t = numax > 0 ? 0.125 * h * h / numax : INFINITY;
+    double t = numax > 0 ? cvisc * h * h / numax : INFINITY;
     for (int m = 0; m < sim->nmat; ++m) {
         const ry_rheology *rh = &sim->mat[m].rheo;
         if (rh->model == RY_RHEO_OLDROYD_B && rh->nu_polymer > 0)

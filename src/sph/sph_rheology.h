@@ -39,9 +39,10 @@ ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc
  * tau' = (tau + dt (L tau + tau L^T + 2 rho nu_p D / lambda)) / (1 + dt / lambda). */
 void ry_sph_rheo_advance(ry_sph_rheo *r, ry_sim *sim, const int mobile[RY_KIND_COUNT], double dt);
 
-/* Time-step limit of the rheology: 0.125 h^2 / (largest particle viscosity) for the explicit
- * viscous term and cfl h sqrt(lambda / nu_p) for the polymer's shear waves; INFINITY when off. */
+/* Time-step limit of the rheology: cvisc h^2 / (largest particle viscosity) for the explicit
+ * viscous term (cvisc from the scheme's viscous form) and cfl h sqrt(lambda / nu_p) for the
+ * polymer's shear waves; INFINITY when off. */
 double ry_sph_rheo_dt(const ry_sph_rheo *r, const ry_sim *sim, const int mobile[RY_KIND_COUNT],
-                      double h, double cfl);
+                      double h, double cfl, double cvisc);
 
 #endif

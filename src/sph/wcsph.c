@@ -1786,8 +1786,9 @@ static ry_status wcsph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     if (w->amax > 0) t = fmin(t, 0.25 * sqrt(h / w->amax));
     double numax = 0;
     for (int m = 0; m < sim->nmat; ++m) numax = fmax(numax, sim->mat[m].viscosity);
-    if (numax > 0 && w->laminar) t = fmin(t, 0.125 * h * h / numax);
-    if (w->laminar) t = fmin(t, ry_sph_rheo_dt(&w->rheo, sim, MOBILE, h, sim->cfl));
+    if (numax > 0 && w->laminar) t = fmin(t, 0.125 * h * h / (numax * w->mu_corr));
+    if (w->laminar)
+        t = fmin(t, ry_sph_rheo_dt(&w->rheo, sim, MOBILE, h, sim->cfl, 0.125 / w->mu_corr));
     *dt = t;
     return RY_OK;
 }
