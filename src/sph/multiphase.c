@@ -63,9 +63,8 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         cs[i] = sn / sd;
     }
     if (sim->par) sim->par->sync(sim, cs, 1); /* halo copies: their owners' values */
-        /* Normal n = grad c'. */
 #pragma omp parallel for schedule(dynamic, 64)
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = 0; i < n; ++i) { /* normal n = grad c' */
         double g[3] = {0, 0, 0};
         if (mobile[kind[i]])
             for (size_t q = off[i]; q < off[i + 1]; ++q) {
