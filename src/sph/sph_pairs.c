@@ -71,6 +71,22 @@ double ry_lattice_number_density(const ry_kernel *k, int dim, double dx) {
     return s;
 }
 
+double ry_lattice_viscous_factor(const ry_kernel *k, int dim, double dx, double vol, double eta2,
+                                 int projected) {
+    const int m = (int)ceil(k->radius / dx) + 1;
+    double s = 0;
+    for (int a = -m; a <= m; ++a)
+        for (int b = -m; b <= m; ++b)
+            for (int c = (dim > 2 ? -m : 0); c <= (dim > 2 ? m : 0); ++c) {
+                const double x = a * dx, y = b * dx, r2 = dx * dx * (a * a + b * b + c * c);
+                const double r = sqrt(r2);
+                if (r <= 0 || r >= k->radius) continue;
+                const double f = ry_kernel_dwdr(k, r) / r;
+                s -= vol * (projected ? (dim + 2) * x * x * y * y : r2 * y * y) * f / (r2 + eta2);
+            }
+    return s;
+}
+
 void ry_hydrostatic_pressure(const ry_sim *sim, double *p) {
     const ry_particles *ps = &sim->ps;
     double g2 = 0, up[3] = {0, 0, 0};

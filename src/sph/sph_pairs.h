@@ -24,6 +24,16 @@ void ry_pair_cache_free(ry_pair_cache *pc);
  * value sum_j W_ij of a particle inside a uniform fluid at the initial spacing. */
 double ry_lattice_number_density(const ry_kernel *k, int dim, double dx);
 
+/* A viscous term applied to the shear field v = (y^2/2, 0(, 0)), whose Laplacian is
+ * (1, 0(, 0)), at a particle of the full lattice of spacing dx (the x component; particle
+ * volume vol, F = (dW/dr)/r): the form of Morris et al. (1997),
+ * 2 sum_j V F_j r_j^2 / (r_j^2 + eta2) (v_i - v_j), gives -sum_j V F_j r_j^2 y_j^2 / (r_j^2 +
+ * eta2); the projected form of seed 004 eq. 5, 2 (d + 2) sum_j V F_j ((v_i - v_j) . x_ij) x_ij /
+ * (r_j^2 + eta2), gives -(d + 2) sum_j V F_j x_j^2 y_j^2 / (r_j^2 + eta2). The continuum value
+ * is 1; the lattice's is what scheme.viscosity_correction: lattice divides the viscosity by. */
+double ry_lattice_viscous_factor(const ry_kernel *k, int dim, double dx, double vol, double eta2,
+                                 int projected);
+
 /* Hydrostatic pressure of every fluid particle, p = rho0 |g| (top - z) along the upward
  * direction -g/|g|, the free surface half a spacing above the highest fluid particle; p is 0
  * for other kinds and everywhere without gravity. p has ps.n entries. */

@@ -94,29 +94,6 @@ static const char *const loop_names[] = {"auto", "cells", "list", NULL};
 static const char *const viscosity_correction_names[] = {"none", "lattice", NULL};
 static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why);
 
-/* The laminar viscous term applied to u = |x|^2 / (2 d) (whose Laplacian is 1) at a particle of
- * the full lattice: sum_j V 2 F_j r_j^2 / (r_j^2 + 0.01 h^2) (u_i - u_j), F = (dW/dr) / r (the
- * transport-velocity form has no 0.01 h^2). The continuum value is 1; on the lattice it is not
- * (Wendland C2 at h = 1.4 dx in 2D: 0.979), which makes a Poiseuille flow run fast by an error
- * that does not shrink with the spacing (docs/wcsph.md); scheme.viscosity_correction: lattice
- * divides the viscosity by it. */
-static double laminar_lattice_factor(const ry_sim *sim, int tvf) {
-    const ry_kernel *k = &sim->kernel;
-    const int dim = sim->dim, m = (int)ceil(k->radius / sim->dx) + 1;
-    const double dx = sim->dx, vol = dim > 2 ? dx * dx * dx : dx * dx;
-    const double eta2 = tvf ? 0.0 : 0.01 * k->h * k->h;
-    double s = 0;
-    for (int a = -m; a <= m; ++a)
-        for (int b = -m; b <= m; ++b)
-            for (int c = (dim > 2 ? -m : 0); c <= (dim > 2 ? m : 0); ++c) {
-                const double r2 = dx * dx * (double)(a * a + b * b + c * c), r = sqrt(r2);
-                if (r <= 0 || r >= k->radius) continue;
-                const double f = ry_kernel_dwdr(k, r) / r;
-                s += vol * 2.0 * f * r2 / (r2 + eta2) * (-r2 / (2.0 * dim));
-            }
-    return s;
-}
-
 static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
     wcsph *w = calloc(1, sizeof *w);
     RY_CHECK(err, w != NULL, RY_ERR_NOMEM, "out of memory");
@@ -143,7 +120,12 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     int corr;
     RY_TRY(ry_case_choice(c, "scheme.viscosity_correction", "none", viscosity_correction_names,
                           &corr, err));
-    w->mu_corr = corr ? 1.0 / laminar_lattice_factor(sim, w->tvf) : 1.0;
+    /* The lattice's value of the Morris term for a unit Laplacian (Wendland C2, h = 1.4 dx, 2D:
+     * 0.979); the transport-velocity form has no 0.01 h^2 (docs/wcsph.md). */
+    const double dxd = sim->dim > 2 ? sim->dx * sim->dx * sim->dx : sim->dx * sim->dx;
+    const double eta2 = w->tvf ? 0.0 : 0.01 * sim->kernel.h * sim->kernel.h;
+    w->mu_corr =
+        corr ? 1.0 / ry_lattice_viscous_factor(&sim->kernel, sim->dim, sim->dx, dxd, eta2, 0) : 1.0;
     RY_TRY(ry_case_bool(c, "scheme.wall_repulsion", &yes, &w->repulse, err));
     double r0 = 0.75;
     RY_TRY(ry_case_double(c, "scheme.wall_repulsion_radius", &r0, 0.1, 1.0, &w->rep_r0, err));

@@ -46,30 +46,25 @@ grep -q "restarting from .*checkpoint_0000000700.ryc (step 700" "$T/part2.log" |
     bad "restart did not name its checkpoint: $(cat "$T/part2.log")"
 same "$T/full" "$T/part" "dam break restarted at step 700"
 
-# 1b. MPS with an Oldroyd-B fluid: the polymer stress is part of the state.
-OB="$SRC/cases/mps_oldroyd_b_startup.yaml"
-OBSET="--set time.end=0.004 --set time.output_interval=0.001 --set output.vtk=true"
-# shellcheck disable=SC2086
-run obfull "$OB" $OBSET --threads 1
-[ "$rc" -eq 0 ] || bad "uninterrupted Oldroyd-B run exited $rc: $(cat "$T/obfull.log")"
-# shellcheck disable=SC2086
-run obpart "$OB" $OBSET --threads 1 --set time.max_steps=250
-# shellcheck disable=SC2086
-"$RY" run "$OB" $OBSET --threads 1 --restart "$T/obpart" > "$T/obpart2.log" 2>&1 ||
-    bad "Oldroyd-B restart failed: $(cat "$T/obpart2.log")"
-same "$T/obfull" "$T/obpart" "Oldroyd-B start-up restarted at step 250"
+# restarted NAME CASE STEPS LABEL: CASE (Oldroyd-B start-up, to 4 ms, one thread) run whole and
+# stopped at STEPS then continued with --restart ends bitwise the same
+OBSET="--set time.end=0.004 --set time.output_interval=0.001 --set output.vtk=true --threads 1"
+restarted() {
+    # shellcheck disable=SC2086
+    run "$1full" "$2" $OBSET
+    [ "$rc" -eq 0 ] || bad "uninterrupted $4 run exited $rc: $(cat "$T/$1full.log")"
+    # shellcheck disable=SC2086
+    run "$1part" "$2" $OBSET --set time.max_steps="$3"
+    # shellcheck disable=SC2086
+    "$RY" run "$2" $OBSET --restart "$T/$1part" > "$T/$1part2.log" 2>&1 ||
+        bad "$4 restart failed: $(cat "$T/$1part2.log")"
+    same "$T/$1full" "$T/$1part" "$4 restarted at step $3"
+}
 
+# 1b. MPS with an Oldroyd-B fluid: the polymer stress is part of the state.
+restarted ob "$SRC/cases/mps_oldroyd_b_startup.yaml" 250 "Oldroyd-B start-up"
 # 1c. The same with WCSPH: the polymer stress and the particle viscosity are part of its state.
-OBS="$SRC/cases/sph_oldroyd_b_startup.yaml"
-# shellcheck disable=SC2086
-run obsfull "$OBS" $OBSET --threads 1
-[ "$rc" -eq 0 ] || bad "uninterrupted WCSPH Oldroyd-B run exited $rc: $(cat "$T/obsfull.log")"
-# shellcheck disable=SC2086
-run obspart "$OBS" $OBSET --threads 1 --set time.max_steps=350
-# shellcheck disable=SC2086
-"$RY" run "$OBS" $OBSET --threads 1 --restart "$T/obspart" > "$T/obspart2.log" 2>&1 ||
-    bad "WCSPH Oldroyd-B restart failed: $(cat "$T/obspart2.log")"
-same "$T/obsfull" "$T/obspart" "WCSPH Oldroyd-B start-up restarted at step 350"
+restarted obs "$SRC/cases/sph_oldroyd_b_startup.yaml" 350 "WCSPH Oldroyd-B start-up"
 
 # 2. Periodic checkpoints (every 250 steps, keep 2): restart from the older of the two, after
 # the newest was damaged (truncated).
