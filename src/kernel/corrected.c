@@ -49,8 +49,10 @@ ry_status ry_mat_inverse(int dim, const double *a, double *inv, ry_error *err) {
 /* d = xi - xj, r = |d|. */
 static double separation(int dim, const double *xi, const double *xj, double *d) {
     double r2 = 0;
-    for (int a = 0; a < 3; ++a) d[a] = a < dim ? xi[a] - xj[a] : 0.0;
-    for (int a = 0; a < dim; ++a) r2 += d[a] * d[a];
+    for (int a = 0; a < 3; ++a) {
+        d[a] = a < dim ? xi[a] - xj[a] : 0.0;
+        r2 += d[a] * d[a];
+    }
     return sqrt(r2);
 }
 
