@@ -135,44 +135,89 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
     }
 }
 
-/* Wetting (CSF): the normal of a fluid particle with a normal and a wall particle within 1.5
- * spacings becomes sin(theta) t + cos(theta) n_w. n_w = -sum_walls w x_ij / r, normalised,
- * points from the wall into the fluid; t is the particle's normal less its part along n_w,
- * normalised (it points along the wall away from the liquid). A normal along n_w (a film)
- * has no t and is left as it is. */
-static void contact_normals(const ry_surface_tension *st, const ry_sim *sim, double *nrm) {
+/* Wetting (CSF): the wall normal n_w at fluid particle i, -sum_walls w x_ij / r normalised
+ * (it points from the wall into the fluid), and the contact normal
+ * n_theta = sin(theta) t + cos(theta) n_w, with t the outward normal n less its part along n_w,
+ * normalised (it points along the wall away from the liquid). Returns 0 where there is no
+ * wall within re, or n lies along n_w (a film: no t); *near says whether a wall particle lies
+ * within 1.5 spacings. */
+static int contact_frame(const ry_surface_tension *st, const ry_sim *sim, size_t i, const double *n,
+                         double *nth, int *near) {
     const ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const double reach2 = 2.25 * st->l0 * st->l0, re2 = st->re * st->re;
+    double nw[3] = {0, 0, 0};
+    *near = 0;
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const uint32_t j = sim->nl.j[q];
+        if (ps->kind[j] != RY_KIND_WALL) continue;
+        double dx[3];
+        const double r2 = pair_sep(sim, i, j, dx);
+        if (r2 >= re2 || r2 <= 0) continue;
+        *near |= r2 < reach2;
+        const double w = ry_mps_weight_tamai(sqrt(r2), st->re) / sqrt(r2);
+        for (int d = 0; d < dim; ++d) nw[d] -= w * dx[d];
+    }
+    double nn = 0;
+    for (int d = 0; d < dim; ++d) nn += nw[d] * nw[d];
+    if (!(nn > 0)) return 0;
+    nn = sqrt(nn);
+    double t[3] = {0, 0, 0}, dot = 0, tn = 0;
+    for (int d = 0; d < dim; ++d) dot += n[d] * nw[d] / nn;
+    for (int d = 0; d < dim; ++d) {
+        t[d] = n[d] - dot * nw[d] / nn;
+        tn += t[d] * t[d];
+    }
+    if (tn < 1e-6) return 0;
+    tn = sqrt(tn);
     const double ct = cos(st->contact_angle), sn = sin(st->contact_angle);
+    for (int d = 0; d < 3; ++d) nth[d] = d < dim ? sn * t[d] / tn + ct * nw[d] / nn : 0.0;
+    return 1;
+}
+
+/* Wetting (CSF), the colour gradient g of a surface particle i within reach of a wall: walls
+ * count as liquid only on the liquid's side of the surface that meets the wall at the
+ * prescribed angle, the plane normal to n_theta half a spacing outside x_i (surface particles
+ * sit half a spacing inside the free surface). The plane reaches the wall at the contact line;
+ * the walls beyond it lie under the gas, for theta > 90 degrees in the wedge of gas under the
+ * drop. Counted as liquid they tilt the normals of the surface above them towards the wall's
+ * own, a false convex curvature at the contact line: a 150-degree drop spread to 136 degrees
+ * (docs/mps.md, "Wetting"). */
+static void wetted_colour(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *g) {
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const double re = st->re, re2 = re * re;
+    double n[3] = {0, 0, 0}, nth[3], gn = 0;
+    int near;
+    for (int d = 0; d < dim; ++d) gn += g[d] * g[d];
+    for (int d = 0; d < dim; ++d) n[d] = -g[d] / sqrt(gn);
+    if (!contact_frame(st, sim, i, n, nth, &near)) return;
+    g[0] = g[1] = g[2] = 0;
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const uint32_t j = sim->nl.j[q];
+        const double c = pair_coefficient(st, ps, i, j, 1);
+        if (c == 0.0) continue;
+        double dx[3], out = 0;
+        const double r2 = pair_sep(sim, i, j, dx);
+        if (r2 >= re2 || r2 <= 0) continue;
+        for (int d = 0; d < dim; ++d) out += dx[d] * nth[d];
+        if (ps->kind[j] == RY_KIND_WALL && out > 0.5 * st->l0) continue;
+        const double r = sqrt(r2), w = c * ry_mps_weight_tamai(r, re);
+        for (int d = 0; d < dim; ++d) g[d] += w * dx[d] / r;
+    }
+}
+
+/* Wetting (CSF): the normal of a fluid particle with a normal and a wall particle within 1.5
+ * spacings becomes n_theta (contact_frame). */
+static void contact_normals(const ry_surface_tension *st, const ry_sim *sim, double *nrm) {
+    const ry_particles *ps = &sim->ps;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID || isnan(nrm[3 * i])) continue;
-        double nw[3] = {0, 0, 0};
-        int near = 0;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const uint32_t j = sim->nl.j[q];
-            if (ps->kind[j] != RY_KIND_WALL) continue;
-            double dx[3];
-            const double r2 = pair_sep(sim, i, j, dx);
-            if (r2 >= re2 || r2 <= 0) continue;
-            near |= r2 < reach2;
-            const double w = ry_mps_weight_tamai(sqrt(r2), st->re) / sqrt(r2);
-            for (int d = 0; d < dim; ++d) nw[d] -= w * dx[d];
-        }
-        double nn = 0;
-        for (int d = 0; d < dim; ++d) nn += nw[d] * nw[d];
-        if (!near || !(nn > 0)) continue;
-        nn = sqrt(nn);
-        double t[3] = {0, 0, 0}, dot = 0, tn = 0;
-        for (int d = 0; d < dim; ++d) dot += nrm[3 * i + d] * nw[d] / nn;
-        for (int d = 0; d < dim; ++d) {
-            t[d] = nrm[3 * i + d] - dot * nw[d] / nn;
-            tn += t[d] * t[d];
-        }
-        if (tn < 1e-6) continue;
-        tn = sqrt(tn);
-        for (int d = 0; d < dim; ++d) nrm[3 * i + d] = sn * t[d] / tn + ct * nw[d] / nn;
+        double nth[3];
+        int near;
+        if (!contact_frame(st, sim, i, nrm + 3 * i, nth, &near) || !near) continue;
+        for (int d = 0; d < sim->dim; ++d) nrm[3 * i + d] = nth[d];
     }
 }
 
@@ -193,6 +238,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
     double *gs = kappa + 5 * n;  /* 3 per particle: the colour gradient g */
     const double gmin = 0.1 * st->g_top;
     const double re2 = st->re * st->re;
+    const int wet = !isnan(st->contact_angle);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         gs[3 * i] = gs[3 * i + 1] = gs[3 * i + 2] = 0;
@@ -201,6 +247,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         st_sums(st, sim, i, g, &count);
         for (int d = 0; d < dim; ++d) gn += g[d] * g[d];
         if (sqrt(gn) <= gmin) continue;
+        if (wet) wetted_colour(st, sim, i, g);
         for (int d = 0; d < dim; ++d) gs[3 * i + d] = g[d];
     }
     /* A distributed run: each pass reads its neighbours' results of the pass before, which

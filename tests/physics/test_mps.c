@@ -192,6 +192,11 @@ static void test_sessile_120(void **state) {
     sessile(120);
 }
 
+static void test_sessile_150(void **state) {
+    (void)state;
+    sessile(150);
+}
+
 /* Inflow through a catheter (cases/mps_embolization_2d.yaml, the embolic liquid injected at
  * 0.05 m/s here to keep the test short): the injected volume (inflow_volume, lanes of inlet
  * buffer particles that became fluid) within half a layer of U w t (w = 0.4 mm) at every output
@@ -336,12 +341,19 @@ int main(void) {
     const char *r = getenv("RY_SOURCE_DIR");
     snprintf(root, sizeof root, "%s", r ? r : ".");
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hydrostatic_column), cmocka_unit_test(test_square_drop_potential),
-        cmocka_unit_test(test_square_drop_csf),    cmocka_unit_test(test_drop_rest_csf_2d),
-        cmocka_unit_test(test_drop_rest_csf_3d),   cmocka_unit_test(test_sessile_30),
-        cmocka_unit_test(test_sessile_90),         cmocka_unit_test(test_sessile_120),
-        cmocka_unit_test(test_catheter_inflow),    cmocka_unit_test(test_overflow),
-        cmocka_unit_test(test_two_liquid_drop),    cmocka_unit_test(test_two_liquid_circle_csf),
+        cmocka_unit_test(test_hydrostatic_column),
+        cmocka_unit_test(test_square_drop_potential),
+        cmocka_unit_test(test_square_drop_csf),
+        cmocka_unit_test(test_drop_rest_csf_2d),
+        cmocka_unit_test(test_drop_rest_csf_3d),
+        cmocka_unit_test(test_sessile_30),
+        cmocka_unit_test(test_sessile_90),
+        cmocka_unit_test(test_sessile_120),
+        cmocka_unit_test(test_sessile_150),
+        cmocka_unit_test(test_catheter_inflow),
+        cmocka_unit_test(test_overflow),
+        cmocka_unit_test(test_two_liquid_drop),
+        cmocka_unit_test(test_two_liquid_circle_csf),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
