@@ -585,13 +585,7 @@ static int corrected_gradient(const ry_sim *sim, const mps *M, size_t i, int flu
             for (int b = 0; b < dim; ++b) g[c][b] += wr * dv * dx[b];
         }
     }
-    int ok = 1;
-    for (int c = 0; c < nc; ++c) {
-        double x[3] = {0, 0, 0};
-        ok = ok && ry_solve_small(dim, m, g[c], x);
-        for (int b = 0; b < 3; ++b) grad[c][b] = ok ? x[b] : 0.0;
-    }
-    return ok;
+    return ry_solve_rows(dim, m, nc, g, grad);
 }
 
 /* Velocity of j seen from fluid particle i: a wall's mirrored as in the viscous terms. */

@@ -30,4 +30,16 @@ static inline int ry_solve_small(int dim, double m[3][3], const double *g, doubl
     return 1;
 }
 
+/* Solves m x_c = g_c for the nc rows of g into x (x may be g); 0 when m is singular, and the
+ * rows of x are then zero. */
+static inline int ry_solve_rows(int dim, double m[3][3], int nc, double (*g)[3], double (*x)[3]) {
+    int ok = 1;
+    for (int c = 0; c < nc; ++c) {
+        double y[3] = {0, 0, 0};
+        ok = ok && ry_solve_small(dim, m, g[c], y);
+        for (int b = 0; b < 3; ++b) x[c][b] = ok ? y[b] : 0.0;
+    }
+    return ok;
+}
+
 #endif

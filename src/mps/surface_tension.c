@@ -192,18 +192,17 @@ static void wetted_colour(const ry_surface_tension *st, const ry_sim *sim, size_
     for (int d = 0; d < dim; ++d) gn += g[d] * g[d];
     for (int d = 0; d < dim; ++d) n[d] = -g[d] / sqrt(gn);
     if (!contact_frame(st, sim, i, n, nth, &near)) return;
-    g[0] = g[1] = g[2] = 0;
+    /* g holds every wall (st_sums): take out those beyond the plane. */
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
         const uint32_t j = sim->nl.j[q];
-        const double c = pair_coefficient(st, ps, i, j, 1);
-        if (c == 0.0) continue;
+        if (ps->kind[j] != RY_KIND_WALL) continue;
         double dx[3], out = 0;
         const double r2 = pair_sep(sim, i, j, dx);
         if (r2 >= re2 || r2 <= 0) continue;
         for (int d = 0; d < dim; ++d) out += dx[d] * nth[d];
-        if (ps->kind[j] == RY_KIND_WALL && out > 0.5 * st->l0) continue;
-        const double r = sqrt(r2), w = c * ry_mps_weight_tamai(r, re);
-        for (int d = 0; d < dim; ++d) g[d] += w * dx[d] / r;
+        if (out <= 0.5 * st->l0) continue;
+        const double r = sqrt(r2), w = ry_mps_weight_tamai(r, re);
+        for (int d = 0; d < dim; ++d) g[d] -= w * dx[d] / r;
     }
 }
 

@@ -39,17 +39,6 @@ void ry_sph_rheo_free(ry_sph_rheo *r) {
     r->cap = 0;
 }
 
-/* Solves m x = g for the rows of g (nc of them) in place; 0 when m is singular. */
-static int solve_rows(int dim, double m[3][3], int nc, double g[6][3]) {
-    int ok = 1;
-    for (int c = 0; c < nc; ++c) {
-        double x[3] = {0, 0, 0};
-        ok = ok && ry_solve_small(dim, m, g[c], x);
-        for (int b = 0; b < 3; ++b) g[c][b] = ok ? x[b] : 0.0;
-    }
-    return ok;
-}
-
 ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc,
                             const int mobile[RY_KIND_COUNT], const double *vol,
                             const double *const vwall[3], ry_error *err) {
@@ -111,7 +100,7 @@ ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc
                 for (int b = 0; b < dim; ++b) gt[k][b] += vj * dt * P[RY_PW_GX + b];
             }
         }
-        solve_rows(dim, mv, dim, gv); /* a particle with too few neighbours: L = 0 */
+        ry_solve_rows(dim, mv, dim, gv, gv); /* a particle with too few neighbours: L = 0 */
         double dd = 0;
         for (int a = 0; a < dim; ++a)
             for (int b = 0; b < dim; ++b) {
@@ -122,7 +111,7 @@ ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc
         const double gd = sqrt(2.0 * dd);
         ps->f[r->f_gd][i] = gd;
         ps->f[r->f_nu][i] = ry_rheology_nu(&mat->rheo, mat->viscosity, gd);
-        if (!r->ob || !solve_rows(dim, mt, nt, gt)) continue;
+        if (!r->ob || !ry_solve_rows(dim, mt, nt, gt, gt)) continue;
         for (int k = 0; k < nt; ++k) {
             int a, b;
             ry_tau_index(dim, k, &a, &b);
