@@ -48,6 +48,10 @@ typedef struct ry_surface_tension {
      * is set to sin(theta) t + cos(theta) n_w (Brackbill et al. 1992): n_w the wall's normal
      * into the fluid, t the particle's normal projected on the wall plane. */
     double contact_angle;
+    /* CSF: the Laplace jump sigma kappa as the pressure of the surface particles (1) or a force
+     * (0), and the passes of smoothing of that jump along the surface (ry_st_read). */
+    int pressure_form;
+    int smoothing;
 } ry_surface_tension;
 
 /* Names used in case files: "none", "csf", "potential" (NULL-terminated, indexed by model). */
@@ -58,6 +62,13 @@ extern const char *const ry_st_curvature_names[];
 /* Sets up a model on the square (2D) or simple cubic (3D) lattice of spacing l0. */
 ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, double re,
                       double sigma, ry_error *err);
+
+/* Reads the case's surface_tension section (model, sigma, radius in spacings with default
+ * re_default and at most re_max, and for CSF csf_form, curvature and smoothing) and sets the
+ * model up on the lattice of spacing l0. The curvature defaults to the form's own: the surface
+ * divergence for the pressure form, the full divergence for the force form. */
+ry_status ry_st_read(ry_surface_tension *st, ry_case *c, int dim, double l0, double re_default,
+                     double re_max, ry_error *err);
 
 /* Potential model (seed eq. 10 and 12): the inter-particle force f(r) = (r - l0)(r - re) and
  * its potential phi(r) = 1/3 (3/2 l0 - 1/2 re - r)(r - re)^2, f = -dphi/dr; both 0 for r > re. */
@@ -79,5 +90,14 @@ ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, doub
  * (0 elsewhere): the corrected divergence of the colour function's outward normal. kappa holds
  * 8 n doubles (the rest is work space). */
 void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *kappa);
+
+/* CSF in pressure form: pd[i] = sigma kappa_s, the Laplace jump of the fluid particles with
+ * tag[i] == surface (the surface particles, which carry it as their pressure). The curvature
+ * (ry_st_curvature) is averaged over the surface particles within radius (st->smoothing passes,
+ * Tamai weights, the particle itself 1), and corrected for the half spacing between the surface
+ * layer and the free surface where it is convex. pd holds 8 n doubles (the rest is work
+ * space). */
+void ry_st_laplace_pressure(const ry_surface_tension *st, const ry_sim *sim, const uint8_t *tag,
+                            uint8_t surface, double radius, double *pd);
 
 #endif

@@ -68,7 +68,6 @@ typedef struct mps {
     double *b, *xs;
     double *pd;       /* Dirichlet pressure of the surface particles (8 n: work) */
     int csf_pressure; /* CSF as the Laplace jump on the surface particles */
-    int csf_smooth;   /* passes of smoothing of that jump along the surface */
     /* CSF between two liquids (surface_tension.interfacial_sigma with model csf): the colour
      * field of the SPH schemes (sph/multiphase.h) on the case's kernel */
     int colour_on;
@@ -233,39 +232,12 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(
         ry_case_double(c, "scheme.solver.viscosity_tolerance", &vtol, 1e-14, 1e-2, &M->vtol, err));
     RY_TRY(ry_case_int(c, "scheme.solver.max_iterations", &maxit, 10, 1000000, &M->max_iter, err));
-    int model;
-    double sigma = 0, rst = 3.1;
-    RY_TRY(ry_case_choice(c, "surface_tension.model", "none", ry_st_model_names, &model, err));
-    if (model != RY_ST_NONE) {
-        RY_TRY(ry_case_double(c, "surface_tension.sigma", NULL, 0.0, INFINITY, &sigma, err));
-        RY_TRY(ry_case_double(c, "surface_tension.radius", &rst, 1.5, 6.0, &rst, err));
-    }
-    int curv = RY_ST_CURV_DIVERGENCE;
-    if (model == RY_ST_CSF) {
-        static const char *const forms[] = {"force", "pressure", NULL};
-        RY_TRY(ry_case_choice(c, "surface_tension.csf_form", "pressure", forms, &M->csf_pressure,
-                              err));
-        /* The curvature that suits each form (docs/mps.md): the surface divergence for the
-         * pressure form; for the force form the full divergence, whose high reading makes up for
-         * the part of the force the pressure equation does not take up. */
-        RY_TRY(ry_case_choice(c, "surface_tension.curvature",
-                              M->csf_pressure ? "surface" : "divergence", ry_st_curvature_names,
-                              &curv, err));
-        long passes = 2;
-        char where[256];
-        RY_CHECK(err, M->csf_pressure || !ry_case_has(c, "surface_tension.smoothing"), RY_ERR_INPUT,
-                 "%s: key 'surface_tension.smoothing': applies to csf_form: pressure only",
-                 ry_case_where(c, "surface_tension.smoothing", where, sizeof where));
-        RY_TRY(ry_case_int(c, "surface_tension.smoothing", &passes, 0, 20, &passes, err));
-        M->csf_smooth = (int)passes;
-    }
     M->re_g *= l0;
     M->re_l *= l0;
-    rst *= l0;
-    RY_TRY(ry_st_setup(&M->st, model, sim->dim, l0, rst, sigma, err));
-    M->st.curvature = curv;
+    RY_TRY(ry_st_read(&M->st, c, sim->dim, l0, 3.1, 6.0, err));
+    M->csf_pressure = M->st.model == RY_ST_CSF && M->st.pressure_form;
     RY_TRY(contact_angle(c, M, err));
-    M->re_max = fmax(fmax(M->re_g, M->re_l), model != RY_ST_NONE ? rst : 0.0);
+    M->re_max = fmax(fmax(M->re_g, M->re_l), M->st.model != RY_ST_NONE ? M->st.re : 0.0);
     RY_TRY(interfacial(sim, c, M, err));
     double lam_g;
     ry_mps_lattice(sim->dim, l0, M->re_g, &M->n0g, &lam_g);
@@ -846,44 +818,9 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
 }
 
 /* CSF in pressure form: the Dirichlet value of each surface particle is the Laplace jump
- * sigma kappa. (1) The curvature of the particle's normal field is averaged over the surface
- * particles within the gradient radius (M->csf_smooth passes, weights w, the particle itself
- * 1): the single values are noisy enough to drive a 3D drop at rest unstable (a drop of 8
- * spacings' radius at 1.5 ms, one of 12 spacings slowly); the average over the wider surface
- * tension radius also smooths the corners of an oscillating cube and slows it (cube of 20^3:
- * period +37 %). (2) The surface particles sit half a spacing inside the free surface (as for
- * the hydrostatic column), and the curvature read at them is that of their own layer: a sphere
- * of radius R - l0/2 rather than R. Each principal curvature k of the layer becomes
- * k / (1 + k l0/2) at the surface; with kappa = (d - 1) k,
- * kappa_s = kappa / (1 + kappa l0 / (2 (d - 1))). Only convex curvatures are corrected:
- * enlarging the concave ones by the same rule made the oscillating 30^3 cube unstable. */
+ * sigma kappa, averaged along the surface within the gradient radius. */
 static void csf_dirichlet(ry_sim *sim, mps *M) {
-    const ry_particles *ps = &sim->ps;
-    const size_t n = ps->n;
-    double *pd = M->pd, *tmp = M->pd + n; /* the curvature's work space is free after it */
-    ry_st_curvature(&M->st, sim, pd);
-    const double re = M->re_g;
-    for (int pass = 0; pass < M->csf_smooth; ++pass) {
-#pragma omp parallel for schedule(dynamic, 64)
-        for (size_t i = 0; i < n; ++i) {
-            tmp[i] = pd[i];
-            if (M->role[i] != ROLE_SURFACE || ps->kind[i] != RY_KIND_FLUID) continue;
-            double ks = pd[i], ws = 1.0;
-            for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
-                const uint32_t j = M->pj[q];
-                if (M->role[j] != ROLE_SURFACE || ps->kind[j] != RY_KIND_FLUID || M->pr[q] <= 0)
-                    continue;
-                const double w = ry_mps_weight_tamai(M->pr[q], re);
-                ks += w * pd[j];
-                ws += w;
-            }
-            tmp[i] = ks / ws;
-        }
-        memcpy(pd, tmp, n * sizeof *pd);
-        if (sim->par) sim->par->sync(sim, pd, 1);
-    }
-    const double shift = sim->dx / (2.0 * (sim->dim - 1));
-    for (size_t i = 0; i < n; ++i) pd[i] = M->st.sigma * pd[i] / (1.0 + fmax(pd[i], 0.0) * shift);
+    ry_st_laplace_pressure(&M->st, sim, M->role, ROLE_SURFACE, M->re_g, M->pd);
 }
 
 /* Pressure Poisson equation at x*: unknowns are the inner fluid and the wall particles. */

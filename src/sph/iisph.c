@@ -33,6 +33,7 @@
 #include <string.h>
 
 #include "ryushi/sim.h"
+#include "ryushi/surface_tension.h"
 #include "sph/iisph.h"
 #include "sph/multiphase.h"
 #include "sph/sph_pairs.h"
@@ -60,6 +61,12 @@ typedef struct iisph {
     double cvisc;     /* its explicit time-step factor: dt <= cvisc h^2 / nu */
     int ghost;        /* scheme.wall_velocity: ghost (Adami et al. 2012) */
     ry_sph_rheo rheo; /* non-Newtonian materials */
+    /* Free-surface tension (the surface_tension section; docs/iisph.md): */
+    ry_surface_tension st;
+    double st_beta;  /* CSF pressure form: surface particles have delta < st_beta delta0 */
+    double *st_p;    /* their Laplace jump P_i (0 elsewhere), then work space: 8 n */
+    uint8_t *st_tag; /* 1 for the surface particles */
+    size_t st_cap;
 } iisph;
 
 /* Kinds that move under the fluid equations (and take part as fluid): fluid and outlet
@@ -116,6 +123,15 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         s->colour.rho_bar = 0.5 * (sim->mat[a].density + sim->mat[b].density);
         RY_TRY(ry_colour_init(&s->colour, sim, err));
     }
+    RY_TRY(ry_st_read(&s->st, c, sim->dim, sim->dx, 3.1, 6.0, err));
+    /* Two layers carry the jump: on a flat lattice the top layer has 0.77 delta0, the one
+     * under it 0.99 (Wendland C2, h = 1.4 dx). With the top layer alone (0.9 to 0.97) the
+     * drop at rest grew a star of spikes within 5 ms: the layer under it, short of neighbours,
+     * took a pressure under the jump. */
+    double beta = 0.995;
+    if (s->st.model == RY_ST_CSF && s->st.pressure_form)
+        RY_TRY(ry_case_double(c, "surface_tension.surface_threshold", &beta, 0.5, 1.0, &s->st_beta,
+                              err));
     s->mu = calloc((size_t)sim->nmat, sizeof *s->mu);
     RY_CHECK(err, s->mu != NULL, RY_ERR_NOMEM, "out of memory");
     for (int m = 0; m < sim->nmat; ++m) s->mu[m] = sim->mat[m].density * sim->mat[m].viscosity;
@@ -164,6 +180,8 @@ static void iisph_free(void *state) {
     ry_sph_rheo_free(&s->rheo);
     free(s->delta);
     free(s->mu);
+    free(s->st_p);
+    free(s->st_tag);
     free(s);
 }
 
@@ -354,6 +372,8 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
     const double dt2 = dt * dt, d0 = s->delta0;
     double *p = ps->f[RY_F_P], *pnew = s->pnew;
+    /* The least pressure: the Laplace jump of the surface particles (CSF, pressure form). */
+    const double *plow = s->st.model == RY_ST_CSF && s->st.pressure_form ? s->st_p : NULL;
     const double *v[3];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
         /* Predicted number density from the predicted velocities (in the velocity field), the
@@ -374,6 +394,9 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
         /* Only compression is corrected: an expanded particle (free surface, splash) asks for
          * no tension, which the non-negative pressure could not give. */
         s->dstar[i] = delta[i] + dt * dv;
+        /* With the Laplace jump on the surface particles the others ask for no expansion: the
+         * deficit of the layers under the surface would pull their pressure under the jump. */
+        if (plow && !s->st_tag[i]) s->dstar[i] = fmax(s->dstar[i], d0);
         for (int d = 0; d < 3; ++d) s->dii[3 * i + d] = -dt2 / (m[i] * di2) * dii[d];
     }
 #pragma omp parallel for schedule(dynamic, 64)
@@ -446,11 +469,12 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
             double pn = 0;
             if (fabs(aii) > 1e-300)
                 pn = (1 - omega) * p[i] + omega * (d0 - s->dstar[i] - rest) / aii;
-            pn = pn > 0 ? pn : 0;
+            const double floor = plow ? plow[i] : 0.0;
+            pn = pn > floor ? pn : floor;
             pnew[i] = pn;
             /* Ihmsen's average density error: clamped (free-surface) particles count only when
              * compressed. */
-            esum += (p[i] > 0 || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
+            esum += (p[i] > floor || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
         }
         memcpy(p, pnew, n * sizeof *p);
         if (sim->par) {
@@ -463,6 +487,61 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
     }
     s->error_last = avg;
     return it;
+}
+
+/* Free-surface tension (the surface_tension section). The potential model and CSF in force form
+ * add their accelerations. CSF in pressure form (docs/iisph.md): each surface particle (number
+ * density below st_beta delta0) takes the Laplace jump P_i = sigma kappa_i as its least
+ * pressure, and its pressure force counts pressures from P_i up,
+ *   a^p_i = -(1/m_i) sum_j ((p_i - P_i) / delta_i^2 + (p_j - P_i) / delta_j^2) grad_i W_ij,
+ * so a surface particle at P_i feels only the pressure differences inside the liquid (the
+ * symmetric form would push it out with P_i against the empty side). The part with P_i is
+ * known before the solve and goes into the predicted velocity. The other particles ask for no
+ * expansion (their predicted number density is taken as at least delta0). */
+static ry_status surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    if (s->st_cap < n) {
+        double *b = realloc(s->st_p, 8 * n * sizeof *b);
+        RY_CHECK(err, b != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
+        s->st_p = b;
+        uint8_t *t = realloc(s->st_tag, n);
+        RY_CHECK(err, t != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
+        s->st_tag = t;
+        s->st_cap = n;
+    }
+    double *P = s->st_p;
+    if (s->st.model != RY_ST_CSF || !s->st.pressure_form) {
+        double *a[3] = {P, P + n, P + 2 * n};
+        memset(P, 0, 3 * n * sizeof *P);
+        RY_TRY(ry_st_accelerate(&s->st, sim, a, err));
+        for (size_t i = 0; i < n; ++i)
+            for (int d = 0; d < dim; ++d) s->acc[3 * i + d] += a[d][i];
+        return RY_OK;
+    }
+    for (size_t i = 0; i < n; ++i)
+        s->st_tag[i] = ps->kind[i] == RY_KIND_FLUID && s->delta[i] < s->st_beta * s->delta0;
+    ry_st_laplace_pressure(&s->st, sim, s->st_tag, 1, 2.1 * sim->dx, P);
+    for (size_t i = 0; i < n; ++i)
+        if (!s->st_tag[i]) P[i] = 0.0;
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (P[i] == 0.0) continue;
+        double a[3] = {0, 0, 0};
+        const double di2 = 1.0 / (delta[i] * delta[i]);
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            const double *Q = cv + q * RY_PAIR_STRIDE;
+            const double f = di2 + (MOBILE[ps->kind[j]] ? 1.0 / (delta[j] * delta[j]) : di2);
+            for (int d = 0; d < dim; ++d) a[d] += f * Q[RY_PW_GX + d];
+        }
+        for (int d = 0; d < dim; ++d) s->acc[3 * i + d] += P[i] * a[d] / m[i];
+    }
+    return RY_OK;
 }
 
 static ry_status iisph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
@@ -496,6 +575,11 @@ static ry_status iisph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     if (numax > 0) t = fmin(t, s->cvisc * h * h / (numax * s->mu_corr));
     t = fmin(t, ry_sph_rheo_dt(&s->rheo, sim, MOBILE, h, sim->cfl, s->cvisc / s->mu_corr));
     if (s->colour_on) t = fmin(t, ry_colour_dt(&s->colour, sim));
+    if (s->st.model != RY_ST_NONE && s->st.sigma > 0) { /* capillary waves (Brackbill 1992) */
+        double rho = INFINITY;
+        for (int m = 0; m < sim->nmat; ++m) rho = fmin(rho, sim->mat[m].density);
+        t = fmin(t, sqrt(rho * pow(sim->dx, 3) / (2 * RY_PI * s->st.sigma)));
+    }
     if (!isfinite(t)) t = sim->dt_max > 0 ? sim->dt_max : 1e-3 * sim->t_end;
     *dt = t;
     return RY_OK;
@@ -504,7 +588,9 @@ static ry_status iisph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
 static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     iisph *s = state;
     ry_particles *ps = &sim->ps;
-    RY_TRY(ry_sim_neighbors(sim, sim->kernel.radius, err)); /* may reorder particles */
+    /* The surface-tension radius may reach beyond the kernel's (pairs there have W = 0). */
+    const double reach = fmax(sim->kernel.radius, s->st.model != RY_ST_NONE ? s->st.re : 0.0);
+    RY_TRY(ry_sim_neighbors(sim, reach, err)); /* may reorder particles */
     const size_t n = ps->n;
     const int dim = sim->dim;
     RY_TRY(ensure(s, n, err));
@@ -517,6 +603,7 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     RY_TRY(densities_and_forces(sim, s, err));
     if (s->colour_on)
         RY_TRY(ry_colour_force(&s->colour, sim, &s->pc, s->delta, MOBILE, s->acc, err));
+    if (s->st.model != RY_ST_NONE) RY_TRY(surface_tension(sim, s, err));
     /* Predicted velocity v* = v + dt a_nonpressure. */
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[ps->kind[i]]) continue;

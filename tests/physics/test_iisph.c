@@ -125,7 +125,7 @@ static void test_stacked(void **state) {
 
 /* Square drop relaxing to a circle (cases/square_drop.yaml, 16 particles across, sigma = 1 N/m,
  * solver tolerance 1e-6): at t = 0.4 s the pressure inside (r < R/2) minus outside (r > 1.5 R)
- * is sigma / R within 5 % (measured +1.1 %), R = 0.4/sqrt(pi). */
+ * is sigma / R within 5 % (measured +2.7 %), R = 0.4/sqrt(pi). */
 static void test_square_drop(void **state) {
     (void)state;
     const char *sets[] = {"time.end=0.4", "output.vtk=false"};
@@ -140,6 +140,30 @@ static void test_square_drop(void **state) {
            dp, 1.0 / R, 100 * (dp * R - 1), ry_column_max_from(&s, "max_speed", 0.3),
            ry_column_max(&s, "iisph_iterations_mean"));
     assert_true(fabs(dp * R - 1) <= 0.05);
+    ry_sim_free(&sim);
+    ry_table_free(&s);
+}
+
+/* Free-surface tension (CSF in pressure form): the circular drop of cases/iisph_drop_rest_2d.yaml
+ * (R = 2 mm, 20 spacings, sigma = 0.0728 N/m, 10 ms) keeps a pressure inside within 25 % of the
+ * Laplace jump sigma / R over its second half (measured +19.7 %; MPS meets 5 %: docs/iisph.md)
+ * and its spurious speeds below 0.05 m/s (measured 0.042). */
+static void test_free_drop_rest(void **state) {
+    (void)state;
+    const char *sets[] = {"time.end=0.01"};
+    ry_sim sim;
+    ry_run_stats stats;
+    ry_table s;
+    run_case("cases/iisph_drop_rest_2d.yaml", "free_drop", 1, sets, &s, &sim, &stats);
+    int cnt;
+    const double p = ry_column_mean_from(&s, "drop_pressure", 0.005, &cnt), jump = 0.0728 / 2e-3;
+    const double vmax = ry_column_max_from(&s, "max_speed", 0.005);
+    printf("free drop at rest: p inside %.2f Pa, sigma/R %.2f Pa (%+.1f %%), largest speed %.4f "
+           "m/s\n",
+           p, jump, 100 * (p / jump - 1), vmax);
+    assert_true(cnt >= 10);
+    assert_true(fabs(p / jump - 1) <= 0.25);
+    assert_true(vmax < 0.05);
     ry_sim_free(&sim);
     ry_table_free(&s);
 }
@@ -217,9 +241,10 @@ int main(void) {
     const char *src = getenv("RY_SOURCE_DIR");
     snprintf(root, sizeof root, "%s", src ? src : ".");
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hydrostatic),     cmocka_unit_test(test_martin_moyce),
-        cmocka_unit_test(test_stacked),         cmocka_unit_test(test_square_drop),
-        cmocka_unit_test(test_rayleigh_taylor), cmocka_unit_test(test_eye_port_walls),
+        cmocka_unit_test(test_hydrostatic),    cmocka_unit_test(test_martin_moyce),
+        cmocka_unit_test(test_stacked),        cmocka_unit_test(test_square_drop),
+        cmocka_unit_test(test_free_drop_rest), cmocka_unit_test(test_rayleigh_taylor),
+        cmocka_unit_test(test_eye_port_walls),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
