@@ -367,4 +367,12 @@ void ry_sim_snapshot_free(ry_sim *sim);
 /* Monotonic wall clock in seconds. */
 double ry_wall_time(void);
 
+/* Artificial repulsion between fluid particles closer than rc (Lee et al. 2011 collision model
+ * in the gather form; MPS, seed 003, and IISPH with free-surface tension): for each approaching
+ * pair, particle i takes the share of a partially inelastic collision,
+ * dv_i = (1 + e)/2 (v_ij . n) n, n = x_ij / r, v_ij = v_j - v_i (walls count with their own
+ * velocity, twice, and do not move). Positions follow by dt dv_i. Reads the neighbour list of
+ * sim (which must reach rc); dv is work space of dim n doubles. rc <= 0: nothing. */
+void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, double *dv);
+
 #endif

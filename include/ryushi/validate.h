@@ -69,6 +69,12 @@ ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_
                                 const ry_table *ghia_v, const char *out_dir, double *rms_u,
                                 double *rms_v, ry_error *err);
 
+/* A hydrostatic column: the time-mean pressure of profile `name` at its point k (*p) against
+ * rho g h, with h = top - x_k along the last axis (*h); returns the relative error, NAN when the
+ * profile is missing or has no sample there. */
+double ry_profile_hydrostatic_error(const ry_sim *sim, const char *name, int k, double top,
+                                    double rho, double g, double *p, double *h);
+
 /* Oscillating drop as the seed measures it (seed 003, section 3): from a column (the width),
  * smoothed by a moving average over 5 rows, the half period is the time of the first maximum
  * of the width (the first local maximum above the middle between the initial and the largest

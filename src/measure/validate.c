@@ -202,6 +202,18 @@ ry_status ry_cavity_centrelines(const ry_sim *sim, double L, double U, const ry_
                       path, rms_v, err);
 }
 
+double ry_profile_hydrostatic_error(const ry_sim *sim, const char *name, int k, double top,
+                                    double rho, double g, double *p, double *h) {
+    *p = *h = NAN;
+    const ry_profile *pf = ry_profile_find(sim, name);
+    if (!pf || k < 0 || k >= pf->npoints) return NAN;
+    double x[3];
+    ry_profile_point(sim, pf, k, x);
+    *h = top - x[sim->dim - 1];
+    *p = ry_profile_mean(sim, pf, k, sim->dim);
+    return *p / (rho * g * *h) - 1.0;
+}
+
 ry_drop_periods ry_drop_periods_measure(const ry_table *series, const char *name) {
     ry_drop_periods out = {NAN, NAN, NAN, NAN, NAN};
     const int ct = ry_table_col(series, "t"), cw = ry_table_col(series, name);

@@ -930,45 +930,6 @@ static void correct(ry_sim *sim, mps *M, double dt) {
     }
 }
 
-/* Artificial repulsion between particles closer than r_c (Lee et al. 2011 collision model in
- * the gather form): for each approaching pair, particle i takes the share of a partially
- * inelastic collision, dv_i = (1 + e)/2 (v_ij . n) n, n = x_ij / r, v_ij = v_j - v_i (walls
- * count with their own velocity and do not move). Positions follow by dt dv_i. */
-static void collisions(ry_sim *sim, mps *M, double dt) {
-    if (M->coll_r <= 0) return;
-    ry_particles *ps = &sim->ps;
-    const int dim = sim->dim;
-    const size_t n = ps->n;
-    const double rc2 = M->coll_r * M->coll_r, f = 0.5 * (1.0 + M->coll_e);
-    double *dv = M->xs; /* dim per particle */
-#pragma omp parallel for schedule(dynamic, 64)
-    for (size_t i = 0; i < n; ++i) {
-        double s[3] = {0, 0, 0};
-        if (ps->kind[i] == RY_KIND_FLUID)
-            for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
-                const uint32_t j = M->pj[q];
-                double dx[3];
-                const double r2 = sep(sim, i, j, dx);
-                if (r2 >= rc2 || r2 <= 0) continue;
-                double vn = 0;
-                for (int d = 0; d < dim; ++d)
-                    vn += (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]) * dx[d];
-                if (vn >= 0) continue;                                      /* separating */
-                const double mj = ps->kind[j] == RY_KIND_FLUID ? 1.0 : 2.0; /* a wall: mirror */
-                for (int d = 0; d < dim; ++d) s[d] += mj * f * vn * dx[d] / r2;
-            }
-        for (int d = 0; d < dim; ++d) dv[dim * i + d] = s[d];
-    }
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
-        for (int d = 0; d < dim; ++d) {
-            ps->f[RY_F_VX + d][i] += dv[dim * i + d];
-            ps->f[RY_F_X + d][i] += dt * dv[dim * i + d];
-        }
-    }
-}
-
 /* Fluid particles that crossed a periodic side back into the box. */
 static void wrap_periodic(ry_sim *sim) {
     ry_particles *ps = &sim->ps;
@@ -1026,7 +987,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
             sim->par->sync(sim, ps->f[RY_F_X + d], 1);
             sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
         }
-    collisions(sim, M, dt);
+    ry_collisions(sim, M->coll_r, M->coll_e, dt, M->xs); /* xs: dim n doubles (scratch) */
     /* Inflow buffer particles (open_boundaries) move with their prescribed velocity; in the
      * pressure and viscous terms they are walls with that velocity, and ry_open_update turns
      * those past the zone into fluid. */

@@ -67,6 +67,7 @@ typedef struct iisph {
     double *st_p;    /* their Laplace jump P_i (0 elsewhere), then work space: 8 n */
     uint8_t *st_tag; /* 1 for the surface particles */
     size_t st_cap;
+    double coll_r, coll_e; /* artificial repulsion: distance [m], restitution */
 } iisph;
 
 /* Kinds that move under the fluid equations (and take part as fluid): fluid and outlet
@@ -132,6 +133,12 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     if (s->st.model == RY_ST_CSF && s->st.pressure_form)
         RY_TRY(ry_case_double(c, "surface_tension.surface_threshold", &beta, 0.5, 1.0, &s->st_beta,
                               err));
+    /* Artificial repulsion (as in MPS): on by default with the Laplace jump as a pressure, where
+     * nothing else keeps surface particles at equal pressure apart. */
+    double cr = s->st.model == RY_ST_CSF && s->st.pressure_form ? 0.85 : 0.0, ce = 0.2;
+    RY_TRY(ry_case_double(c, "scheme.repulsion.distance", &cr, 0.0, 1.0, &s->coll_r, err));
+    RY_TRY(ry_case_double(c, "scheme.repulsion.restitution", &ce, 0.0, 1.0, &s->coll_e, err));
+    s->coll_r *= sim->dx;
     s->mu = calloc((size_t)sim->nmat, sizeof *s->mu);
     RY_CHECK(err, s->mu != NULL, RY_ERR_NOMEM, "out of memory");
     for (int m = 0; m < sim->nmat; ++m) s->mu[m] = sim->mat[m].density * sim->mat[m].viscosity;
@@ -372,7 +379,7 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
     const double dt2 = dt * dt, d0 = s->delta0;
     double *p = ps->f[RY_F_P], *pnew = s->pnew;
-    /* The least pressure: the Laplace jump of the surface particles (CSF, pressure form). */
+    /* The Laplace jump of the surface particles (CSF, pressure form): their pressure. */
     const double *plow = s->st.model == RY_ST_CSF && s->st.pressure_form ? s->st_p : NULL;
     const double *v[3];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
@@ -469,9 +476,10 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
             double pn = 0;
             if (fabs(aii) > 1e-300)
                 pn = (1 - omega) * p[i] + omega * (d0 - s->dstar[i] - rest) / aii;
-            const double floor = plow ? plow[i] : 0.0;
-            pn = pn > floor ? pn : floor;
-            pnew[i] = pn;
+            /* CSF in pressure form: a surface particle's pressure is its Laplace jump. */
+            const int dirichlet = plow && s->st_tag[i];
+            const double floor = dirichlet ? plow[i] : 0.0;
+            pnew[i] = dirichlet ? floor : pn > 0 ? pn : 0;
             /* Ihmsen's average density error: clamped (free-surface) particles count only when
              * compressed. */
             esum += (p[i] > floor || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
@@ -491,8 +499,8 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
 
 /* Free-surface tension (the surface_tension section). The potential model and CSF in force form
  * add their accelerations. CSF in pressure form (docs/iisph.md): each surface particle (number
- * density below st_beta delta0) takes the Laplace jump P_i = sigma kappa_i as its least
- * pressure, and its pressure force counts pressures from P_i up,
+ * density below st_beta delta0) takes the Laplace jump P_i = sigma kappa_i as its pressure (a
+ * Dirichlet value, as in MPS), and its pressure force counts pressures from P_i,
  *   a^p_i = -(1/m_i) sum_j ((p_i - P_i) / delta_i^2 + (p_j - P_i) / delta_j^2) grad_i W_ij,
  * so a surface particle at P_i feels only the pressure differences inside the liquid (the
  * symmetric form would push it out with P_i against the empty side). The part with P_i is
@@ -664,6 +672,9 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         }
     }
     ry_sph_rheo_advance(&s->rheo, sim, MOBILE, dt); /* polymer stress, with L at t */
+    /* Artificial repulsion (scheme.repulsion), from the positions and velocities at t + dt;
+     * the neighbour list of this step still reaches 0.85 dx. */
+    ry_collisions(sim, s->coll_r, s->coll_e, dt, s->acc);
     s->vmax = sqrt(vmax2);
     s->amax = sqrt(amax2);
     s->have_state = 1;

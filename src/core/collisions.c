@@ -1,0 +1,38 @@
+/* Artificial repulsion between particles closer than a set distance (include/ryushi/sim.h). */
+#include "ryushi/sim.h"
+
+void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, double *dv) {
+    if (rc <= 0) return;
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const size_t n = ps->n;
+    const double rc2 = rc * rc, f = 0.5 * (1.0 + restitution);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double s[3] = {0, 0, 0};
+        if (ps->kind[i] == RY_KIND_FLUID)
+            for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+                const uint32_t j = sim->nl.j[q];
+                double dx[3] = {0, 0, 0}, r2 = 0;
+                for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+                ry_box_min_image(&sim->box, dx);
+                for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+                if (r2 >= rc2 || r2 <= 0) continue;
+                double vn = 0;
+                for (int d = 0; d < dim; ++d)
+                    vn += (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]) * dx[d];
+                if (vn >= 0) continue;                                      /* separating */
+                const double mj = ps->kind[j] == RY_KIND_FLUID ? 1.0 : 2.0; /* a wall: mirror */
+                for (int d = 0; d < dim; ++d) s[d] += mj * f * vn * dx[d] / r2;
+            }
+        for (int d = 0; d < dim; ++d) dv[dim * i + d] = s[d];
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        for (int d = 0; d < dim; ++d) {
+            ps->f[RY_F_VX + d][i] += dv[dim * i + d];
+            ps->f[RY_F_X + d][i] += dt * dv[dim * i + d];
+        }
+    }
+}
