@@ -1,18 +1,21 @@
 /* Artificial repulsion between particles closer than a set distance (include/ryushi/sim.h). */
 #include "ryushi/sim.h"
 
-void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, double *dv) {
+void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, const uint32_t *nj,
+                   const size_t *row_end, double *dv) {
     if (rc <= 0) return;
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
     const double rc2 = rc * rc, f = 0.5 * (1.0 + restitution);
+    if (!nj) nj = sim->nl.j;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         double s[3] = {0, 0, 0};
         if (ps->kind[i] == RY_KIND_FLUID)
-            for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-                const uint32_t j = sim->nl.j[q];
+            for (size_t q = sim->nl.offset[i]; q < (row_end ? row_end[i] : sim->nl.offset[i + 1]);
+                 ++q) {
+                const uint32_t j = nj[q];
                 double dx[3] = {0, 0, 0}, r2 = 0;
                 for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
                 ry_box_min_image(&sim->box, dx);

@@ -987,7 +987,8 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
             sim->par->sync(sim, ps->f[RY_F_X + d], 1);
             sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
         }
-    ry_collisions(sim, M->coll_r, M->coll_e, dt, M->xs); /* xs: dim n doubles (scratch) */
+    /* the pairs within re_g (M->pj up to gend); xs: dim n doubles of scratch */
+    ry_collisions(sim, M->coll_r, M->coll_e, dt, M->pj, M->gend, M->xs);
     /* Inflow buffer particles (open_boundaries) move with their prescribed velocity; in the
      * pressure and viscous terms they are walls with that velocity, and ry_open_update turns
      * those past the zone into fluid. */

@@ -130,6 +130,14 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
      * drop at rest grew a star of spikes within 5 ms: the layer under it, short of neighbours,
      * took a pressure under the jump. */
     double beta = 0.995;
+    char at[256];
+    RY_CHECK(err,
+             (s->st.model == RY_ST_CSF && s->st.pressure_form) ||
+                 !ry_case_has(c, "surface_tension.surface_threshold"),
+             RY_ERR_INPUT,
+             "%s: key 'surface_tension.surface_threshold': applies to model csf with csf_form: "
+             "pressure only",
+             ry_case_where(c, "surface_tension.surface_threshold", at, sizeof at));
     if (s->st.model == RY_ST_CSF && s->st.pressure_form)
         RY_TRY(ry_case_double(c, "surface_tension.surface_threshold", &beta, 0.5, 1.0, &s->st_beta,
                               err));
@@ -674,7 +682,7 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     ry_sph_rheo_advance(&s->rheo, sim, MOBILE, dt); /* polymer stress, with L at t */
     /* Artificial repulsion (scheme.repulsion), from the positions and velocities at t + dt;
      * the neighbour list of this step still reaches 0.85 dx. */
-    ry_collisions(sim, s->coll_r, s->coll_e, dt, s->acc);
+    ry_collisions(sim, s->coll_r, s->coll_e, dt, NULL, NULL, s->acc);
     s->vmax = sqrt(vmax2);
     s->amax = sqrt(amax2);
     s->have_state = 1;
