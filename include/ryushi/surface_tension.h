@@ -54,6 +54,16 @@ typedef struct ry_surface_tension {
     int smoothing;
 } ry_surface_tension;
 
+/* Work space of the pressure form in a scheme: the Laplace jump per particle (8 n doubles, as
+ * ry_st_laplace_pressure needs) and the surface tag (n). */
+typedef struct ry_st_work {
+    double *p;
+    uint8_t *tag;
+    size_t cap;
+} ry_st_work;
+ry_status ry_st_work_ensure(ry_st_work *w, size_t n, ry_error *err);
+void ry_st_work_free(ry_st_work *w);
+
 /* Names used in case files: "none", "csf", "potential" (NULL-terminated, indexed by model). */
 extern const char *const ry_st_model_names[];
 /* "divergence", "surface" (NULL-terminated, indexed by ry_st_curvature_form). */

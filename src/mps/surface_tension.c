@@ -92,6 +92,26 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     return RY_OK;
 }
 
+ry_status ry_st_work_ensure(ry_st_work *w, size_t n, ry_error *err) {
+    if (w->cap >= n) return RY_OK;
+    double *b = realloc(w->p, 8 * n * sizeof *b);
+    RY_CHECK(err, b != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
+    w->p = b;
+    uint8_t *t = realloc(w->tag, n);
+    RY_CHECK(err, t != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
+    w->tag = t;
+    w->cap = n;
+    return RY_OK;
+}
+
+void ry_st_work_free(ry_st_work *w) {
+    free(w->p);
+    free(w->tag);
+    w->p = NULL;
+    w->tag = NULL;
+    w->cap = 0;
+}
+
 ry_status ry_st_read(ry_surface_tension *st, ry_case *c, int dim, double l0, double re_default,
                      double re_max, ry_error *err) {
     int model, curv = RY_ST_CURV_DIVERGENCE, pressure = 0;

@@ -63,10 +63,9 @@ typedef struct iisph {
     ry_sph_rheo rheo; /* non-Newtonian materials */
     /* Free-surface tension (the surface_tension section; docs/iisph.md): */
     ry_surface_tension st;
-    double st_beta;  /* CSF pressure form: surface particles have delta < st_beta delta0 */
-    double *st_p;    /* their Laplace jump P_i (0 elsewhere), then work space: 8 n */
-    uint8_t *st_tag; /* 1 for the surface particles */
-    size_t st_cap;
+    double st_beta;        /* CSF pressure form: surface particles have delta < st_beta delta0 */
+    ry_st_work stw;        /* the Laplace jump P_i of the surface particles (0 elsewhere) and their
+                              tag (1) */
     double coll_r, coll_e; /* artificial repulsion: distance [m], restitution */
 } iisph;
 
@@ -195,8 +194,7 @@ static void iisph_free(void *state) {
     ry_sph_rheo_free(&s->rheo);
     free(s->delta);
     free(s->mu);
-    free(s->st_p);
-    free(s->st_tag);
+    ry_st_work_free(&s->stw);
     free(s);
 }
 
@@ -388,7 +386,7 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
     const double dt2 = dt * dt, d0 = s->delta0;
     double *p = ps->f[RY_F_P], *pnew = s->pnew;
     /* The Laplace jump of the surface particles (CSF, pressure form): their pressure. */
-    const double *plow = s->st.model == RY_ST_CSF && s->st.pressure_form ? s->st_p : NULL;
+    const double *plow = s->st.model == RY_ST_CSF && s->st.pressure_form ? s->stw.p : NULL;
     const double *v[3];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
         /* Predicted number density from the predicted velocities (in the velocity field), the
@@ -411,7 +409,7 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
         s->dstar[i] = delta[i] + dt * dv;
         /* With the Laplace jump on the surface particles the others ask for no expansion: the
          * deficit of the layers under the surface would pull their pressure under the jump. */
-        if (plow && !s->st_tag[i]) s->dstar[i] = fmax(s->dstar[i], d0);
+        if (plow && !s->stw.tag[i]) s->dstar[i] = fmax(s->dstar[i], d0);
         for (int d = 0; d < 3; ++d) s->dii[3 * i + d] = -dt2 / (m[i] * di2) * dii[d];
     }
 #pragma omp parallel for schedule(dynamic, 64)
@@ -485,7 +483,7 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
             if (fabs(aii) > 1e-300)
                 pn = (1 - omega) * p[i] + omega * (d0 - s->dstar[i] - rest) / aii;
             /* CSF in pressure form: a surface particle's pressure is its Laplace jump. */
-            const int dirichlet = plow && s->st_tag[i];
+            const int dirichlet = plow && s->stw.tag[i];
             const double floor = dirichlet ? plow[i] : 0.0;
             pnew[i] = dirichlet ? floor : pn > 0 ? pn : 0;
             /* Ihmsen's average density error: clamped (free-surface) particles count only when
@@ -518,16 +516,8 @@ static ry_status surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    if (s->st_cap < n) {
-        double *b = realloc(s->st_p, 8 * n * sizeof *b);
-        RY_CHECK(err, b != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
-        s->st_p = b;
-        uint8_t *t = realloc(s->st_tag, n);
-        RY_CHECK(err, t != NULL, RY_ERR_NOMEM, "out of memory (surface tension)");
-        s->st_tag = t;
-        s->st_cap = n;
-    }
-    double *P = s->st_p;
+    RY_TRY(ry_st_work_ensure(&s->stw, n, err));
+    double *P = s->stw.p;
     if (s->st.model != RY_ST_CSF || !s->st.pressure_form) {
         double *a[3] = {P, P + n, P + 2 * n};
         memset(P, 0, 3 * n * sizeof *P);
@@ -537,10 +527,10 @@ static ry_status surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
         return RY_OK;
     }
     for (size_t i = 0; i < n; ++i)
-        s->st_tag[i] = ps->kind[i] == RY_KIND_FLUID && s->delta[i] < s->st_beta * s->delta0;
-    ry_st_laplace_pressure(&s->st, sim, s->st_tag, 1, 2.1 * sim->dx, P);
+        s->stw.tag[i] = ps->kind[i] == RY_KIND_FLUID && s->delta[i] < s->st_beta * s->delta0;
+    ry_st_laplace_pressure(&s->st, sim, s->stw.tag, 1, 2.1 * sim->dx, P);
     for (size_t i = 0; i < n; ++i)
-        if (!s->st_tag[i]) P[i] = 0.0;
+        if (!s->stw.tag[i]) P[i] = 0.0;
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
@@ -682,6 +672,11 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     ry_sph_rheo_advance(&s->rheo, sim, MOBILE, dt); /* polymer stress, with L at t */
     /* Artificial repulsion (scheme.repulsion), from the positions and velocities at t + dt;
      * the neighbour list of this step still reaches 0.85 dx. */
+    if (sim->par && s->coll_r > 0)
+        for (int d = 0; d < dim; ++d) {
+            sim->par->sync(sim, ps->f[RY_F_X + d], 1);
+            sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
+        }
     ry_collisions(sim, s->coll_r, s->coll_e, dt, NULL, NULL, s->acc);
     s->vmax = sqrt(vmax2);
     s->amax = sqrt(amax2);

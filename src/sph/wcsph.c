@@ -33,6 +33,7 @@
 
 #include "core/guard_check.h"
 #include "ryushi/sim.h"
+#include "ryushi/surface_tension.h"
 #include "sph/sph_pairs.h"
 #include "sph/sph_rheology.h"
 #include "sph/wcsph.h"
@@ -76,6 +77,12 @@ typedef struct wcsph {
     ry_pair_cache pc;      /* its kernel gradients */
     double *vol;           /* its particle volumes m / rho */
     size_t vol_cap;
+    /* Free-surface tension (the surface_tension section; list loop only; docs/wcsph.md) */
+    ry_surface_tension st;
+    double st_beta; /* CSF pressure form: surface where sum_j W < st_beta times the lattice's */
+    double st_w0;   /* the lattice's kernel sum */
+    ry_st_work stw; /* the Laplace jump P_i of the surface particles (0 elsewhere), their tag */
+    double coll_r, coll_e; /* artificial repulsion: distance [m], restitution */
 } wcsph;
 
 /* Kinds that move under the fluid equations. */
@@ -93,6 +100,7 @@ enum { LOOP_AUTO, LOOP_CELLS, LOOP_LIST };
 static const char *const loop_names[] = {"auto", "cells", "list", NULL};
 static const char *const viscosity_correction_names[] = {"none", "lattice", NULL};
 static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why);
+static ry_status st_init(ry_sim *sim, ry_case *c, wcsph *w, ry_error *err);
 
 static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
     wcsph *w = calloc(1, sizeof *w);
@@ -159,6 +167,7 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         RY_CHECK(err, !w->variable_h, RY_ERR_INPUT,
                  "%s: key 'scheme.variable_h': not available with a non-Newtonian material",
                  ry_case_where(c, "scheme.variable_h", where, sizeof where));
+    RY_TRY(st_init(sim, c, w, err));
     int loop;
     RY_TRY(ry_case_choice(c, "scheme.pair_loop", "auto", loop_names, &loop, err));
     const char *why;
@@ -253,6 +262,7 @@ static void wcsph_free(void *state) {
     free(w->cell_fluid);
     ry_sph_rheo_free(&w->rheo);
     ry_pair_cache_free(&w->pc);
+    ry_st_work_free(&w->stw);
     free(w->vol);
     free(w);
 }
@@ -1197,6 +1207,7 @@ static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why) {
            : w->tvf                                                   ? "no transport_velocity"
            : sim->nopen > 0                                           ? "no open boundaries"
            : w->rheo.on                                               ? "Newtonian materials"
+           : w->st.model != RY_ST_NONE                                ? "no surface_tension"
                                                                       : NULL;
     return *why == NULL;
 }
@@ -1714,6 +1725,103 @@ static void polymer_forces(ry_sim *sim, const wcsph *w, force_out *res) {
 }
 
 /* Evaluates all rates at the current (predicted) state. */
+/* Free-surface tension (docs/wcsph.md, "Surface tension"): the surface_tension section as in
+ * MPS and IISPH, on the neighbour-list loop. The potential model and CSF in force form add their
+ * accelerations. CSF in pressure form: the surface particles (kernel sum below st_beta times the
+ * lattice's) take the Laplace jump P_i = sigma kappa_i as their pressure instead of the equation
+ * of state's, and their pressure force counts pressures from P_i:
+ *   a_i = -sum_j m_j ((p_i - P_i) / rho_i^2 + (p_j - P_i) / rho_j^2) grad_i W_ij,
+ * the symmetric form plus P_i sum_j m_j (1/rho_i^2 + 1/rho_j^2) grad_i W_ij (st_forces). With
+ * the pressure form the artificial repulsion of MPS is on by default (scheme.repulsion). */
+static ry_status st_init(ry_sim *sim, ry_case *c, wcsph *w, ry_error *err) {
+    RY_TRY(ry_st_read(&w->st, c, sim->dim, sim->dx, 3.1, 6.0, err));
+    const int pf = w->st.model == RY_ST_CSF && w->st.pressure_form;
+    char at[256];
+    RY_CHECK(err, pf || !ry_case_has(c, "surface_tension.surface_threshold"), RY_ERR_INPUT,
+             "%s: key 'surface_tension.surface_threshold': applies to model csf with csf_form: "
+             "pressure only",
+             ry_case_where(c, "surface_tension.surface_threshold", at, sizeof at));
+    double beta = 0.995, cr = pf ? 0.85 : 0.0, ce = 0.2;
+    if (pf)
+        RY_TRY(ry_case_double(c, "surface_tension.surface_threshold", &beta, 0.5, 1.0, &w->st_beta,
+                              err));
+    RY_TRY(ry_case_double(c, "scheme.repulsion.distance", &cr, 0.0, 1.0, &w->coll_r, err));
+    RY_TRY(ry_case_double(c, "scheme.repulsion.restitution", &ce, 0.0, 1.0, &w->coll_e, err));
+    w->coll_r *= sim->dx;
+    w->st_w0 = ry_lattice_number_density(&sim->kernel, sim->dim, sim->dx);
+    return RY_OK;
+}
+
+/* CSF in pressure form: the surface particles and their Laplace jump, which replaces their
+ * pressure. */
+static ry_status st_laplace(ry_sim *sim, wcsph *w, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    RY_TRY(ry_st_work_ensure(&w->stw, sim->ps.n, err));
+    const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
+    const double rad = sim->kernel.radius;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double sw = w0;
+        if (ps->kind[i] == RY_KIND_FLUID)
+            for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+                const uint32_t j = sim->nl.j[q];
+                if (ps->kind[j] == RY_KIND_SOLID) continue;
+                double dx[3] = {0, 0, 0}, r2 = 0;
+                for (int d = 0; d < sim->dim; ++d)
+                    dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+                ry_box_min_image(&sim->box, dx);
+                for (int d = 0; d < sim->dim; ++d) r2 += dx[d] * dx[d];
+                if (r2 < rad * rad) sw += ry_kernel_w(&sim->kernel, sqrt(r2));
+            }
+        w->stw.tag[i] = ps->kind[i] == RY_KIND_FLUID && sw < w->st_beta * w->st_w0;
+    }
+    double *P = w->stw.p;
+    ry_st_laplace_pressure(&w->st, sim, w->stw.tag, 1, 2.1 * sim->dx, P);
+    for (size_t i = 0; i < n; ++i) {
+        if (!w->stw.tag[i])
+            P[i] = 0.0;
+        else
+            ps->f[RY_F_P][i] = P[i];
+    }
+    return RY_OK;
+}
+
+/* The surface-tension accelerations, added to the fluid's (RY_F_AX). */
+static ry_status st_forces(ry_sim *sim, wcsph *w, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    RY_TRY(ry_st_work_ensure(&w->stw, sim->ps.n, err));
+    if (w->st.model != RY_ST_CSF || !w->st.pressure_form) {
+        double *a[3];
+        for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
+        return ry_st_accelerate(&w->st, sim, a, err);
+    }
+    const double *P = w->stw.p, *m = ps->f[RY_F_MASS], *rho = ps->f[RY_F_RHO];
+    const double rad = sim->kernel.radius;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (!w->stw.tag[i] || P[i] == 0.0) continue;
+        double a[3] = {0, 0, 0};
+        const double ri2 = 1.0 / (rho[i] * rho[i]);
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            if (ps->kind[j] == RY_KIND_SOLID) continue;
+            double dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
+            ry_box_min_image(&sim->box, dx);
+            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+            if (r2 >= rad * rad || r2 <= 0) continue;
+            const double r = sqrt(r2), g = ry_kernel_dwdr(&sim->kernel, r) / r;
+            const double f = m[j] * (ri2 + 1.0 / (rho[j] * rho[j])) * g;
+            for (int d = 0; d < dim; ++d) a[d] += f * dx[d];
+        }
+        for (int d = 0; d < dim; ++d) ps->f[RY_F_AX + d][i] += P[i] * a[d];
+    }
+    return RY_OK;
+}
+
 static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
     double hmax = sim->kernel.h;
@@ -1722,7 +1830,10 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     }
     if (sim->par) hmax = sim->par->max(sim, hmax); /* one search radius on every rank */
     w->hmax = hmax;
-    RY_TRY(ry_sim_neighbors(sim, sim->kernel.kappa * hmax, err));
+    /* The surface-tension radius may reach beyond the kernel's (the pair loop keeps to the
+     * support). */
+    const double reach = fmax(sim->kernel.kappa * hmax, w->st.model ? w->st.re : 0.0);
+    RY_TRY(ry_sim_neighbors(sim, reach, err));
     if (w->fast && w->rng_gen != sim->nl_generation) RY_TRY(fast_ranges(sim, w, err));
     if (w->density == DENS_SUMMATION) density_summation(sim, w);
     const size_t n = ps->n;
@@ -1733,6 +1844,7 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
         for (size_t i = 0; i < n; ++i)
             if (ps->kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, ps->material[i], rho[i], e[i]);
     }
+    if (w->st.model == RY_ST_CSF && w->st.pressure_form) RY_TRY(st_laplace(sim, w, err));
     if (w->fast) {
         /* The wall pass reads the fluid's records and rewrites the walls'. */
         RY_TRY(prepare_pairs(sim, w, err));
@@ -1744,6 +1856,7 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     }
     force_out res;
     RY_TRY(fluid_forces(sim, w, &res, err));
+    if (w->st.model != RY_ST_NONE) RY_TRY(st_forces(sim, w, err));
     if (w->rheo.ob) polymer_forces(sim, w, &res);
     if (sim->par) global_maxima(sim, &res);
     sim->scheme_bytes = wcsph_bytes(w);
@@ -1771,6 +1884,11 @@ static ry_status wcsph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     if (numax > 0 && w->laminar) t = fmin(t, 0.125 * h * h / (numax * w->mu_corr));
     if (w->laminar)
         t = fmin(t, ry_sph_rheo_dt(&w->rheo, sim, MOBILE, h, sim->cfl, 0.125 / w->mu_corr));
+    if (w->st.model != RY_ST_NONE && w->st.sigma > 0) { /* capillary waves (Brackbill 1992) */
+        double rho = INFINITY;
+        for (int m = 0; m < sim->nmat; ++m) rho = fmin(rho, sim->mat[m].density);
+        t = fmin(t, sqrt(rho * pow(sim->dx, 3) / (2 * RY_PI * w->st.sigma)));
+    }
     *dt = t;
     return RY_OK;
 }
@@ -1985,6 +2103,16 @@ static ry_status wcsph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         ry_check_tally(&chk, i, dim, inv_rho0[ps->material[i]], &bad, &fluid, &outside);
     }
     ry_sph_rheo_advance(&w->rheo, sim, MOBILE, dt); /* polymer stress, with L at t + dt */
+    /* Artificial repulsion (scheme.repulsion), from the new positions and velocities. */
+    if (w->coll_r > 0) {
+        RY_TRY(ry_st_work_ensure(&w->stw, sim->ps.n, err));
+        if (sim->par)
+            for (int d = 0; d < dim; ++d) {
+                sim->par->sync(sim, ps->f[RY_F_X + d], 1);
+                sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
+            }
+        ry_collisions(sim, w->coll_r, w->coll_e, dt, NULL, NULL, w->stw.p);
+    }
     sim->check_bad = bad;
     sim->check_fluid = fluid;
     sim->check_outside = outside;

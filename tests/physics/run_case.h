@@ -37,4 +37,37 @@ static void run_case(const char *case_rel, const char *sub, int nset, const char
         ry_sim_free(&sim);
 }
 
+/* Free-surface tension (seed 003 fluid, sigma = 0.0728 N/m): the circular drop at rest of
+ * case_rel (R = 2 mm) keeps the mean of drop_pressure from t0 within tol of sigma / R and its
+ * largest speed from t0 below vlim. */
+static inline void free_drop_at_rest(const char *case_rel, const char *sub, int nset,
+                                     const char *const *sets, double t0, double tol, double vlim) {
+    ry_table s;
+    run_case(case_rel, sub, nset, sets, &s, NULL, NULL);
+    int cnt;
+    const double p = ry_column_mean_from(&s, "drop_pressure", t0, &cnt), jump = 0.0728 / 2e-3;
+    const double vmax = ry_column_max_from(&s, "max_speed", t0);
+    printf("%s: p inside %.2f Pa, sigma/R %.2f Pa (%+.1f %%), largest speed %.4f m/s\n", case_rel,
+           p, jump, 100 * (p / jump - 1), vmax);
+    assert_true(cnt >= 10);
+    assert_true(fabs(p / jump - 1) <= tol);
+    assert_true(vmax < vlim);
+    ry_table_free(&s);
+}
+
+/* The oscillating square of case_rel (side a = 4 mm, 15 ms): its period (ry_drop_periods_measure)
+ * within tol of Lamb's mode 4, T = 2 pi / sqrt(60 sigma / (rho R^3)), R = a / sqrt(pi). */
+static inline void free_square_period(const char *case_rel, const char *sub, double tol) {
+    const char *sets[] = {"time.end=0.015", "output.vtk=false"};
+    ry_table s;
+    run_case(case_rel, sub, 2, sets, &s, NULL, NULL);
+    const double pi = 3.14159265358979323846, R = 4e-3 / sqrt(pi);
+    const double T = 2 * pi / sqrt(60 * 0.0728 / (1e3 * R * R * R));
+    const ry_drop_periods m = ry_drop_periods_measure(&s, "width_x");
+    printf("%s: half period %.2f ms, period %.2f ms, Lamb %.2f ms (%+.1f %%)\n", case_rel,
+           1e3 * m.half, 1e3 * m.period, 1e3 * T, 100 * (m.period / T - 1));
+    assert_true(fabs(m.period / T - 1) <= tol);
+    ry_table_free(&s);
+}
+
 #endif

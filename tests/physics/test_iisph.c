@@ -151,21 +151,7 @@ static void test_square_drop(void **state) {
 static void test_free_drop_rest(void **state) {
     (void)state;
     const char *sets[] = {"time.end=0.01"};
-    ry_sim sim;
-    ry_run_stats stats;
-    ry_table s;
-    run_case("cases/iisph_drop_rest_2d.yaml", "free_drop", 1, sets, &s, &sim, &stats);
-    int cnt;
-    const double p = ry_column_mean_from(&s, "drop_pressure", 0.005, &cnt), jump = 0.0728 / 2e-3;
-    const double vmax = ry_column_max_from(&s, "max_speed", 0.005);
-    printf("free drop at rest: p inside %.2f Pa, sigma/R %.2f Pa (%+.1f %%), largest speed %.4f "
-           "m/s\n",
-           p, jump, 100 * (p / jump - 1), vmax);
-    assert_true(cnt >= 10);
-    assert_true(fabs(p / jump - 1) <= 0.20);
-    assert_true(vmax < 0.05);
-    ry_sim_free(&sim);
-    ry_table_free(&s);
+    free_drop_at_rest("cases/iisph_drop_rest_2d.yaml", "free_drop", 1, sets, 0.005, 0.20, 0.05);
 }
 
 /* The oscillating square of cases/iisph_droplet_square.yaml (40 x 40, CSF in pressure form, 15
@@ -173,19 +159,7 @@ static void test_free_drop_rest(void **state) {
  * R = a / sqrt(pi) (measured +0.1 %, half period -5.8 %: docs/iisph.md). */
 static void test_free_square(void **state) {
     (void)state;
-    const char *sets[] = {"time.end=0.015", "output.vtk=false"};
-    ry_sim sim;
-    ry_run_stats stats;
-    ry_table s;
-    run_case("cases/iisph_droplet_square.yaml", "free_square", 2, sets, &s, &sim, &stats);
-    const double pi = 3.14159265358979323846, R = 4e-3 / sqrt(pi);
-    const double T = 2 * pi / sqrt(60 * 0.0728 / (1e3 * R * R * R));
-    const ry_drop_periods m = ry_drop_periods_measure(&s, "width_x");
-    printf("free square: half period %.2f ms, period %.2f ms, Lamb %.2f ms (%+.1f %%)\n",
-           1e3 * m.half, 1e3 * m.period, 1e3 * T, 100 * (m.period / T - 1));
-    assert_true(fabs(m.period / T - 1) <= 0.10);
-    ry_sim_free(&sim);
-    ry_table_free(&s);
+    free_square_period("cases/iisph_droplet_square.yaml", "free_square", 0.10);
 }
 
 /* Rayleigh-Taylor instability (cases/rayleigh_taylor.yaml at 50 particles per wavelength,
