@@ -224,7 +224,7 @@ static void square_drop(const char *root, const char *out, int *failures) {
 /* Free-surface tension (the surface_tension section) with scheme iisph or wcsph: a drop at rest
  * against the Laplace jump, the mean of drop_pressure over the second half of the run. CSF in
  * pressure form on the circle (R = 2 mm, 20 ms), the potential model by two radii (1 and 2 mm:
- * its cohesive pressure cancels), and with IISPH unless quick the sphere (R = 1.2 mm, 10 ms).
+ * its cohesive pressure cancels), and unless quick the sphere (R = 1.2 mm, 10 ms).
  * Then the oscillating square of 40 x 40 (mode 4) against Lamb, omega^2 = 60 sigma / (rho R^3),
  * R = a / sqrt(pi), measured as the seed does (ry_drop_periods_measure). No target is set for
  * SPH; the checks are those of the tests (jump within 20 %, the square's period within 10 %
@@ -246,7 +246,7 @@ static void free_drop(const char *root, const char *out, int quick, int *failure
                 {rest2, "drop_pot_r1", "potential", "1.0e-3", 0},
                 {rest3, "drop_csf_3d", "csf", "1.2e-3", 2 * sigma / 1.2e-3}};
     double pot[2] = {NAN, NAN};
-    const int three = !quick && strcmp(scheme, "iisph") == 0;
+    const int three = !quick;
     for (int k = 0; k < (three ? 4 : 3); ++k) {
         char model[64], radius[64], sub[64];
         snprintf(model, sizeof model, "surface_tension.model=%s", runs[k].model);

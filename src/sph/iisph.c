@@ -717,7 +717,7 @@ int ry_iisph_iterations(const ry_sim *sim, double *last, double *mean) {
 const ry_scheme_type ry_scheme_iisph = {
     "iisph",
     "implicit incompressible SPH (Ihmsen et al. 2014; number-density two-phase form, colour-field "
-    "surface tension)",
+    "interfacial and free-surface tension)",
     iisph_init,
     iisph_dt,
     iisph_step,

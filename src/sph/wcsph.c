@@ -2134,7 +2134,12 @@ static int wcsph_vars(void *state, ry_state_var *v, int max) {
 }
 
 const ry_scheme_type ry_scheme_wcsph = {
-    "wcsph",    "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog)",
-    wcsph_init, wcsph_dt,
-    wcsph_step, wcsph_free,
-    wcsph_vars, NULL};
+    "wcsph",
+    "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog, "
+    "free-surface tension)",
+    wcsph_init,
+    wcsph_dt,
+    wcsph_step,
+    wcsph_free,
+    wcsph_vars,
+    NULL};
