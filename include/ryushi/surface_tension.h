@@ -80,6 +80,22 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
 ry_status ry_st_read(ry_surface_tension *st, ry_case *c, int dim, double l0, double re_default,
                      double re_max, ry_error *err);
 
+/* The SPH schemes (IISPH, WCSPH): ry_st_read (radius 3.1 spacings by default), then, for CSF in
+ * pressure form, surface_tension.surface_threshold (*beta, default 0.995, an error with another
+ * form), and the artificial repulsion scheme.repulsion.distance (*rc [m]; 0.85 spacings by
+ * default with the pressure form, else 0: off) and .restitution (*e, 0.2); see ry_collisions. */
+ry_status ry_st_read_sph(ry_surface_tension *st, ry_case *c, int dim, double dx, double *beta,
+                         double *rc, double *e, ry_error *err);
+
+/* CSF with the Laplace jump as the surface particles' pressure. */
+static inline int ry_st_pressure_form(const ry_surface_tension *st) {
+    return st->model == RY_ST_CSF && st->pressure_form;
+}
+
+/* Capillary-wave limit of the time step (Brackbill et al. 1992), sqrt(rho l0^3 / (2 pi sigma))
+ * with the least density of the materials; INFINITY without surface tension. */
+double ry_st_capillary_dt(const ry_surface_tension *st, const ry_sim *sim);
+
 /* Potential model (seed eq. 10 and 12): the inter-particle force f(r) = (r - l0)(r - re) and
  * its potential phi(r) = 1/3 (3/2 l0 - 1/2 re - r)(r - re)^2, f = -dphi/dr; both 0 for r > re. */
 double ry_st_potential_f(double r, double l0, double re);

@@ -235,7 +235,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     M->re_g *= l0;
     M->re_l *= l0;
     RY_TRY(ry_st_read(&M->st, c, sim->dim, l0, 3.1, 6.0, err));
-    M->csf_pressure = M->st.model == RY_ST_CSF && M->st.pressure_form;
+    M->csf_pressure = ry_st_pressure_form(&M->st);
     RY_TRY(contact_angle(c, M, err));
     M->re_max = fmax(fmax(M->re_g, M->re_l), M->st.model != RY_ST_NONE ? M->st.re : 0.0);
     RY_TRY(interfacial(sim, c, M, err));
@@ -1028,9 +1028,7 @@ static ry_status mps_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     double t = INFINITY;
     if (v2 > 0) t = sim->cfl * l0 / sqrt(v2);
     if (g > 0) t = fmin(t, sim->cfl * sqrt(l0 / g));
-    /* Capillary waves (Brackbill et al. 1992): dt < sqrt(rho l0^3 / (2 pi sigma)). */
-    if (M->st.model != RY_ST_NONE && M->st.sigma > 0)
-        t = fmin(t, sqrt(rho_min * l0 * l0 * l0 / (2 * RY_PI * M->st.sigma)));
+    t = fmin(t, ry_st_capillary_dt(&M->st, sim));
     if (M->visc == VISC_EXPLICIT && nu_max > 0) t = fmin(t, 0.2 * l0 * l0 / nu_max);
     t = fmin(t, elastic);
     if (M->colour_on) t = fmin(t, ry_colour_dt(&M->colour, sim));

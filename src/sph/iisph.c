@@ -123,29 +123,7 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         s->colour.rho_bar = 0.5 * (sim->mat[a].density + sim->mat[b].density);
         RY_TRY(ry_colour_init(&s->colour, sim, err));
     }
-    RY_TRY(ry_st_read(&s->st, c, sim->dim, sim->dx, 3.1, 6.0, err));
-    /* Two layers carry the jump: on a flat lattice the top layer has 0.77 delta0, the one
-     * under it 0.99 (Wendland C2, h = 1.4 dx). With the top layer alone (0.9 to 0.97) the
-     * drop at rest grew a star of spikes within 5 ms: the layer under it, short of neighbours,
-     * took a pressure under the jump. */
-    double beta = 0.995;
-    char at[256];
-    RY_CHECK(err,
-             (s->st.model == RY_ST_CSF && s->st.pressure_form) ||
-                 !ry_case_has(c, "surface_tension.surface_threshold"),
-             RY_ERR_INPUT,
-             "%s: key 'surface_tension.surface_threshold': applies to model csf with csf_form: "
-             "pressure only",
-             ry_case_where(c, "surface_tension.surface_threshold", at, sizeof at));
-    if (s->st.model == RY_ST_CSF && s->st.pressure_form)
-        RY_TRY(ry_case_double(c, "surface_tension.surface_threshold", &beta, 0.5, 1.0, &s->st_beta,
-                              err));
-    /* Artificial repulsion (as in MPS): on by default with the Laplace jump as a pressure, where
-     * nothing else keeps surface particles at equal pressure apart. */
-    double cr = s->st.model == RY_ST_CSF && s->st.pressure_form ? 0.85 : 0.0, ce = 0.2;
-    RY_TRY(ry_case_double(c, "scheme.repulsion.distance", &cr, 0.0, 1.0, &s->coll_r, err));
-    RY_TRY(ry_case_double(c, "scheme.repulsion.restitution", &ce, 0.0, 1.0, &s->coll_e, err));
-    s->coll_r *= sim->dx;
+    RY_TRY(ry_st_read_sph(&s->st, c, sim->dim, sim->dx, &s->st_beta, &s->coll_r, &s->coll_e, err));
     s->mu = calloc((size_t)sim->nmat, sizeof *s->mu);
     RY_CHECK(err, s->mu != NULL, RY_ERR_NOMEM, "out of memory");
     for (int m = 0; m < sim->nmat; ++m) s->mu[m] = sim->mat[m].density * sim->mat[m].viscosity;
@@ -386,7 +364,7 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
     const double dt2 = dt * dt, d0 = s->delta0;
     double *p = ps->f[RY_F_P], *pnew = s->pnew;
     /* The Laplace jump of the surface particles (CSF, pressure form): their pressure. */
-    const double *plow = s->st.model == RY_ST_CSF && s->st.pressure_form ? s->stw.p : NULL;
+    const double *plow = ry_st_pressure_form(&s->st) ? s->stw.p : NULL;
     const double *v[3];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
         /* Predicted number density from the predicted velocities (in the velocity field), the
@@ -484,11 +462,11 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
                 pn = (1 - omega) * p[i] + omega * (d0 - s->dstar[i] - rest) / aii;
             /* CSF in pressure form: a surface particle's pressure is its Laplace jump. */
             const int dirichlet = plow && s->stw.tag[i];
-            const double floor = dirichlet ? plow[i] : 0.0;
-            pnew[i] = dirichlet ? floor : pn > 0 ? pn : 0;
+            const double pmin = dirichlet ? plow[i] : 0.0;
+            pnew[i] = dirichlet ? pmin : pn > 0 ? pn : 0;
             /* Ihmsen's average density error: clamped (free-surface) particles count only when
              * compressed. */
-            esum += (p[i] > floor || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
+            esum += (p[i] > pmin || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
         }
         memcpy(p, pnew, n * sizeof *p);
         if (sim->par) {
@@ -518,7 +496,7 @@ static ry_status surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
     const int dim = sim->dim;
     RY_TRY(ry_st_work_ensure(&s->stw, n, err));
     double *P = s->stw.p;
-    if (s->st.model != RY_ST_CSF || !s->st.pressure_form) {
+    if (!ry_st_pressure_form(&s->st)) {
         double *a[3] = {P, P + n, P + 2 * n};
         memset(P, 0, 3 * n * sizeof *P);
         RY_TRY(ry_st_accelerate(&s->st, sim, a, err));
@@ -581,11 +559,7 @@ static ry_status iisph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     if (numax > 0) t = fmin(t, s->cvisc * h * h / (numax * s->mu_corr));
     t = fmin(t, ry_sph_rheo_dt(&s->rheo, sim, MOBILE, h, sim->cfl, s->cvisc / s->mu_corr));
     if (s->colour_on) t = fmin(t, ry_colour_dt(&s->colour, sim));
-    if (s->st.model != RY_ST_NONE && s->st.sigma > 0) { /* capillary waves (Brackbill 1992) */
-        double rho = INFINITY;
-        for (int m = 0; m < sim->nmat; ++m) rho = fmin(rho, sim->mat[m].density);
-        t = fmin(t, sqrt(rho * pow(sim->dx, 3) / (2 * RY_PI * s->st.sigma)));
-    }
+    t = fmin(t, ry_st_capillary_dt(&s->st, sim));
     if (!isfinite(t)) t = sim->dt_max > 0 ? sim->dt_max : 1e-3 * sim->t_end;
     *dt = t;
     return RY_OK;

@@ -100,7 +100,6 @@ enum { LOOP_AUTO, LOOP_CELLS, LOOP_LIST };
 static const char *const loop_names[] = {"auto", "cells", "list", NULL};
 static const char *const viscosity_correction_names[] = {"none", "lattice", NULL};
 static int fast_eligible(const ry_sim *sim, const wcsph *w, const char **why);
-static ry_status st_init(ry_sim *sim, ry_case *c, wcsph *w, ry_error *err);
 
 static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
     wcsph *w = calloc(1, sizeof *w);
@@ -167,7 +166,8 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         RY_CHECK(err, !w->variable_h, RY_ERR_INPUT,
                  "%s: key 'scheme.variable_h': not available with a non-Newtonian material",
                  ry_case_where(c, "scheme.variable_h", where, sizeof where));
-    RY_TRY(st_init(sim, c, w, err));
+    RY_TRY(ry_st_read_sph(&w->st, c, sim->dim, sim->dx, &w->st_beta, &w->coll_r, &w->coll_e, err));
+    w->st_w0 = ry_lattice_number_density(&sim->kernel, sim->dim, sim->dx);
     int loop;
     RY_TRY(ry_case_choice(c, "scheme.pair_loop", "auto", loop_names, &loop, err));
     const char *why;
@@ -1724,7 +1724,6 @@ static void polymer_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     res->amax2 = amax2;
 }
 
-/* Evaluates all rates at the current (predicted) state. */
 /* Free-surface tension (docs/wcsph.md, "Surface tension"): the surface_tension section as in
  * MPS and IISPH, on the neighbour-list loop. The potential model and CSF in force form add their
  * accelerations. CSF in pressure form: the surface particles (kernel sum below st_beta times the
@@ -1733,31 +1732,13 @@ static void polymer_forces(ry_sim *sim, const wcsph *w, force_out *res) {
  *   a_i = -sum_j m_j ((p_i - P_i) / rho_i^2 + (p_j - P_i) / rho_j^2) grad_i W_ij,
  * the symmetric form plus P_i sum_j m_j (1/rho_i^2 + 1/rho_j^2) grad_i W_ij (st_forces). With
  * the pressure form the artificial repulsion of MPS is on by default (scheme.repulsion). */
-static ry_status st_init(ry_sim *sim, ry_case *c, wcsph *w, ry_error *err) {
-    RY_TRY(ry_st_read(&w->st, c, sim->dim, sim->dx, 3.1, 6.0, err));
-    const int pf = w->st.model == RY_ST_CSF && w->st.pressure_form;
-    char at[256];
-    RY_CHECK(err, pf || !ry_case_has(c, "surface_tension.surface_threshold"), RY_ERR_INPUT,
-             "%s: key 'surface_tension.surface_threshold': applies to model csf with csf_form: "
-             "pressure only",
-             ry_case_where(c, "surface_tension.surface_threshold", at, sizeof at));
-    double beta = 0.995, cr = pf ? 0.85 : 0.0, ce = 0.2;
-    if (pf)
-        RY_TRY(ry_case_double(c, "surface_tension.surface_threshold", &beta, 0.5, 1.0, &w->st_beta,
-                              err));
-    RY_TRY(ry_case_double(c, "scheme.repulsion.distance", &cr, 0.0, 1.0, &w->coll_r, err));
-    RY_TRY(ry_case_double(c, "scheme.repulsion.restitution", &ce, 0.0, 1.0, &w->coll_e, err));
-    w->coll_r *= sim->dx;
-    w->st_w0 = ry_lattice_number_density(&sim->kernel, sim->dim, sim->dx);
-    return RY_OK;
-}
 
 /* CSF in pressure form: the surface particles and their Laplace jump, which replaces their
  * pressure. */
 static ry_status st_laplace(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    RY_TRY(ry_st_work_ensure(&w->stw, sim->ps.n, err));
+    RY_TRY(ry_st_work_ensure(&w->stw, n, err));
     const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
     const double rad = sim->kernel.radius;
 #pragma omp parallel for schedule(dynamic, 64)
@@ -1792,8 +1773,7 @@ static ry_status st_forces(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    RY_TRY(ry_st_work_ensure(&w->stw, sim->ps.n, err));
-    if (w->st.model != RY_ST_CSF || !w->st.pressure_form) {
+    if (!ry_st_pressure_form(&w->st)) {
         double *a[3];
         for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
         return ry_st_accelerate(&w->st, sim, a, err);
@@ -1802,7 +1782,7 @@ static ry_status st_forces(ry_sim *sim, wcsph *w, ry_error *err) {
     const double rad = sim->kernel.radius;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        if (!w->stw.tag[i] || P[i] == 0.0) continue;
+        if (P[i] == 0.0) continue; /* not a surface particle */
         double a[3] = {0, 0, 0};
         const double ri2 = 1.0 / (rho[i] * rho[i]);
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
@@ -1822,6 +1802,7 @@ static ry_status st_forces(ry_sim *sim, wcsph *w, ry_error *err) {
     return RY_OK;
 }
 
+/* Evaluates all rates at the current (predicted) state. */
 static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;
     double hmax = sim->kernel.h;
@@ -1844,7 +1825,7 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
         for (size_t i = 0; i < n; ++i)
             if (ps->kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, ps->material[i], rho[i], e[i]);
     }
-    if (w->st.model == RY_ST_CSF && w->st.pressure_form) RY_TRY(st_laplace(sim, w, err));
+    if (ry_st_pressure_form(&w->st)) RY_TRY(st_laplace(sim, w, err));
     if (w->fast) {
         /* The wall pass reads the fluid's records and rewrites the walls'. */
         RY_TRY(prepare_pairs(sim, w, err));
@@ -1884,11 +1865,7 @@ static ry_status wcsph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
     if (numax > 0 && w->laminar) t = fmin(t, 0.125 * h * h / (numax * w->mu_corr));
     if (w->laminar)
         t = fmin(t, ry_sph_rheo_dt(&w->rheo, sim, MOBILE, h, sim->cfl, 0.125 / w->mu_corr));
-    if (w->st.model != RY_ST_NONE && w->st.sigma > 0) { /* capillary waves (Brackbill 1992) */
-        double rho = INFINITY;
-        for (int m = 0; m < sim->nmat; ++m) rho = fmin(rho, sim->mat[m].density);
-        t = fmin(t, sqrt(rho * pow(sim->dx, 3) / (2 * RY_PI * w->st.sigma)));
-    }
+    t = fmin(t, ry_st_capillary_dt(&w->st, sim));
     *dt = t;
     return RY_OK;
 }
