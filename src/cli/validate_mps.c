@@ -46,10 +46,11 @@ static void write_plot(ry_plot *p, const char *out, const char *name, int *failu
  * and the largest speed. */
 static void validate_hydrostatic(const char *root, const char *out, int quick, int *failures) {
     ry_error err = {0};
-    /* The pressure is the time mean of the profile `column` over the second half. */
-    const char *sets[] = {quick ? "time.end=1.0" : "time.end=2.0", "time.dt_max=0.001",
+    /* The pressure is the time mean of the profile `column` from 1 s on: means over single
+     * seconds still differ by about 1 % (the free surface keeps a small jitter). */
+    const char *sets[] = {quick ? "time.end=3.0" : "time.end=6.0", "time.dt_max=0.001",
                           "output.vtk=false", "time.output_interval=0.01",
-                          quick ? "profiles[0].average_from=0.5" : "profiles[0].average_from=1.0"};
+                          "profiles[0].average_from=1.0"};
     ry_table s;
     ry_sim sim;
     ry_run_stats stats;
@@ -60,7 +61,7 @@ static void validate_hydrostatic(const char *root, const char *out, int quick, i
         ++*failures;
         return;
     }
-    printf("  pressure at x = 0.1 m, mean over %s (every 10 ms)\n", quick ? "0.5-1 s" : "1-2 s");
+    printf("  pressure at x = 0.1 m, mean over %s (every 10 ms)\n", quick ? "1-3 s" : "1-6 s");
     printf("  %10s %12s %12s %9s\n", "depth [m]", "p [Pa]", "rho g h [Pa]", "error");
     double worst = 0;
     const int ks[] = {5, 10, 20, 30, 38}; /* spacings under the top layer */
@@ -69,14 +70,30 @@ static void validate_hydrostatic(const char *root, const char *out, int quick, i
         const double e =
             ry_profile_hydrostatic_error(&sim, "column", 39 - ks[q], 0.4, 1000.0, 9.81, &p, &h);
         printf("  %10.3f %12.1f %12.1f %+8.2f%%\n", h, p, 1000.0 * 9.81 * h, 100 * e);
-        if (ks[q] >= 10) worst = isfinite(e) ? fmax(worst, fabs(e)) : INFINITY;
+        worst = isfinite(e) ? fmax(worst, fabs(e)) : INFINITY;
     }
-    const double vlate = ry_column_max(&s, "max_speed");
-    printf("  largest speed over the run %.4f m/s; %.2f PPE iterations per step; %.1f s wall\n",
-           vlate, (double)ry_mps_total_iterations(&sim) / (double)stats.steps, stats.wall_s);
-    ry_cli_check("pressure at depths of 10 to 38 spacings within 2 % of rho g h", worst <= 0.02,
+    /* No growing oscillation: the kinetic energy of the second half against the first. */
+    const int ct = ry_table_col(&s, "t"), ck = ry_table_col(&s, "kinetic_energy");
+    const double tend = quick ? 3.0 : 6.0, tmid = 0.5 * (1.0 + tend);
+    double k1 = 0, k2 = 0;
+    int n1 = 0, n2 = 0;
+    for (size_t r = 0; ct >= 0 && ck >= 0 && r < s.nrows; ++r) {
+        const double t = ry_table_at(&s, r, ct), k = ry_table_at(&s, r, ck);
+        if (t > 1.0 && t <= tmid) k1 += k, ++n1;
+        if (t > tmid) k2 += k, ++n2;
+    }
+    k1 = n1 ? k1 / n1 : NAN;
+    k2 = n2 ? k2 / n2 : NAN;
+    const double vrms = sqrt(2 * k2 / (1000.0 * 0.2 * 0.4));
+    printf("  mean kinetic energy %.3g J/m (1-%.1f s), %.3g J/m (%.1f-%.0f s), rms speed %.4f m/s; "
+           "largest speed %.3f m/s; %.2f PPE iterations per step; %.1f s wall\n",
+           k1, tmid, k2, tmid, tend, vrms, ry_column_max(&s, "max_speed"),
+           (double)ry_mps_total_iterations(&sim) / (double)stats.steps, stats.wall_s);
+    ry_cli_check("pressure at depths of 5 to 38 spacings within 2 % of rho g h", worst <= 0.02,
                  failures);
-    ry_cli_check("largest speed below 0.1 m/s (no growing oscillation)", vlate < 0.1, failures);
+    ry_cli_check("no growing oscillation (kinetic energy of the second half at most 1.25 times "
+                 "the first's, rms speed below 0.03 m/s)",
+                 k2 <= 1.25 * k1 && vrms < 0.03, failures);
     ry_sim_free(&sim);
     ry_table_free(&s);
 }

@@ -13,7 +13,8 @@
  *              lap p = (1 - gamma) rho/dt div u* - gamma rho/dt^2 (n* - n0)/n0,
  *              or the classic number-density source (gamma = 1); u' = -dt/rho grad p;
  *              u^{n+1} = u* + u', x^{n+1} = x* + dt u'.
- *  free surface  fluid with n* < beta n0 has p = 0 (Dirichlet).
+ *  free surface  fluid with n* < beta n0 is Dirichlet: the head of half a spacing,
+ *              rho l0/2 max(0, g.n) (n inward), or p = 0 (scheme.surface_pressure).
  *  walls       wall particles with a fluid particle within re (gradient) take part in the
  *              Poisson equation (wall particles); the others only add to the number density
  *              (dummy particles).
@@ -54,6 +55,7 @@ typedef struct mps {
     double coll_r, coll_e; /* artificial repulsion: distance, restitution */
     int dilate;            /* number-density source also for n* < n0 (else compression only) */
     ry_surface_tension st;
+    int surf_head;             /* surface particles hold the head of half a spacing */
     int f_nd, f_surf, f_vs[3]; /* fields */
     int rheo_gnf;              /* some material's viscosity follows the shear rate */
     int rheo_ob;               /* some material is Oldroyd-B */
@@ -96,6 +98,7 @@ static void rheology_explicit(ry_sim *sim, mps *M, double dt);
 static const char *const source_names[] = {"tanaka_masunaga", "number_density", NULL};
 static const char *const visc_names[] = {"explicit", "implicit", "none", NULL};
 static const char *const grad_names[] = {"corrected", "standard", NULL};
+static const char *const surface_pressure_names[] = {"zero", "hydrostatic", NULL};
 static const char *const wall_velocity_names[] = {"own", "mirrored", "slip", NULL};
 enum { WALLV_OWN, WALLV_MIRRORED, WALLV_SLIP };
 
@@ -223,6 +226,8 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     int no = 0;
     RY_TRY(ry_case_bool(c, "scheme.source_dilatation", &no, &M->dilate, err));
     RY_TRY(ry_case_bool(c, "scheme.minimum_pressure", &yes, &M->pmin_on, err));
+    RY_TRY(ry_case_choice(c, "scheme.surface_pressure", "hydrostatic", surface_pressure_names,
+                          &M->surf_head, err));
     double cr = 0.85, ce = 0.2;
     RY_TRY(ry_case_double(c, "scheme.repulsion.distance", &cr, 0.0, 1.0, &M->coll_r, err));
     RY_TRY(ry_case_double(c, "scheme.repulsion.restitution", &ce, 0.0, 1.0, &M->coll_e, err));
@@ -708,7 +713,8 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, d
     return RY_OK;
 }
 
-/* Pressure: pairs between unknowns and free-surface particles (p = 0); dummies are left out. */
+/* Pressure: pairs between unknowns and free-surface particles (Dirichlet); dummies are left
+ * out. */
 static int couple_pressure(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
                            double dt) {
     (void)sim;
@@ -823,6 +829,37 @@ static void csf_dirichlet(ry_sim *sim, mps *M) {
     ry_st_laplace_pressure(&M->st, sim, M->role, ROLE_SURFACE, M->re_g, M->pd);
 }
 
+/* A free-surface particle stands half a spacing inside the surface it represents, so under a
+ * body force g its pressure is the head of that half spacing, rho g.n l0 / 2, with n the
+ * inward direction (towards the neighbours, sum_j w (x_j - x_i) normalised): zero on a surface
+ * that faces down or sideways. With p = 0 on the particles instead, the pressure under the
+ * surface of a column at rest falls short of rho g h by rho g l0 / 2 at every depth
+ * (docs/validation.md). Added to the Dirichlet values in pd. */
+static void surface_head(ry_sim *sim, mps *M) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    const double l0 = sim->dx;
+    if (sim->gravity[0] == 0 && sim->gravity[1] == 0 && sim->gravity[2] == 0) return;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (M->role[i] != ROLE_SURFACE || ps->kind[i] != RY_KIND_FLUID) continue;
+        double in[3] = {0, 0, 0}, nin = 0, gin = 0;
+        for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+            double dx[3];
+            if (sep(sim, i, M->pj[q], dx) <= 0) continue;
+            const double w = ry_mps_weight_tamai(M->pr[q], M->re_g);
+            for (int a = 0; a < dim; ++a) in[a] += w * dx[a];
+        }
+        for (int a = 0; a < dim; ++a) {
+            nin += in[a] * in[a];
+            gin += sim->gravity[a] * in[a];
+        }
+        if (nin > 0 && gin > 0)
+            M->pd[i] += 0.5 * l0 * sim->mat[ps->material[i]].density * gin / sqrt(nin);
+    }
+    if (sim->par) sim->par->sync(sim, M->pd, 1);
+}
+
 /* Pressure Poisson equation at x*: unknowns are the inner fluid and the wall particles. */
 static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     ry_particles *ps = &sim->ps;
@@ -845,11 +882,14 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     RY_TRY(assemble(sim, M, nunk, couple_pressure, dt, M->alpha * rho_max / (dt * dt), err));
     const double *nd = ps->f[M->f_nd];
     const double g = M->gamma;
-    /* Dirichlet values: 0, or the Laplace jump sigma kappa with CSF in pressure form. */
+    /* Dirichlet values: 0, or the Laplace jump sigma kappa with CSF in pressure form; plus,
+     * on the fluid's surface particles, the pressure half a spacing under the surface. */
     if (M->csf_pressure)
         csf_dirichlet(sim, M);
     else
         for (size_t i = 0; i < n; ++i) M->pd[i] = 0;
+    if (M->surf_head) surface_head(sim, M);
+    const int dirichlet = M->csf_pressure || M->surf_head;
     const double rel = M->re_l, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
@@ -857,7 +897,7 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         const double rho = sim->mat[ps->material[i]].density;
         double b = g * rho / (dt * dt) * (M->dilate ? nd[i] - 1.0 : fmax(nd[i] - 1.0, 0.0));
         if (g < 1.0) b -= (1.0 - g) * rho / dt * divergence(sim, M, i);
-        for (size_t q = sim->nl.offset[i]; M->csf_pressure && q < M->lend[i]; ++q)
+        for (size_t q = sim->nl.offset[i]; dirichlet && q < M->lend[i]; ++q)
             if (M->role[M->pj[q]] == ROLE_SURFACE)
                 b += cl * ry_mps_weight_tamai(M->pr[q], rel) * M->pd[M->pj[q]];
         M->b[M->unk[i]] = b;

@@ -27,46 +27,49 @@ static void run(const char *case_rel, const char *sub, int nset, const char *con
     run_case(case_rel, sub, nset, sets, series, keep, NULL);
 }
 
-/* Water 0.4 m deep at rest in a tank (l0 = 1 cm), 1.5 s: the pressure along the middle of the
- * column (the profile `column` of the case, sampled every 10 ms and averaged over 0.5-1.5 s)
+/* Water 0.4 m deep at rest in a tank (l0 = 1 cm), 6 s: the pressure along the middle of the
+ * column (the profile `column` of the case, sampled every 10 ms and averaged over 1-6 s)
  * against rho g h, h from the free surface half a spacing above the top layer. Single snapshots
- * swing by 10 % and more (docs/validation.md), so only the time mean is read. Measured: -1.8 %
- * and -2.3 % at 38 and 30 spacings under the top layer, -3.4 % and -6.1 % at 20 and 10: the
- * neighbourhood's least pressure in the gradient (seed eq. 5) carries part of the weight. The
- * test holds the deep rows within 3 % and those at 10 and 20 spacings within 8 % (the 2 %
- * target is not met there). No growing motion: the largest speed after the first half second
- * below 0.1 m/s (3.5 % of sqrt(2 g H)) and not above twice its largest value before. */
+ * swing by 10 % and more and means over 1 s by about 1 % (docs/validation.md), so only the long
+ * time mean is read. Target (issue): within 2 % at every depth; measured -1.4 % at 5 spacings
+ * under the top layer, -0.9 % at 10, within 0.5 % deeper (the free-surface particles hold the
+ * head of half a spacing, scheme.surface_pressure; with p = 0 on them, -8.8 % and -4.9 %). No
+ * growing motion: the mean kinetic energy over 3.5-6 s not above 1.25 times that over 1-3.5 s
+ * (measured 0.8), and the rms speed below 0.03 m/s (measured 0.02 m/s). */
 static void test_hydrostatic_column(void **state) {
     (void)state;
-    const char *sets[] = {"time.end=1.5", "time.dt_max=0.001", "output.vtk=false",
-                          "profiles[0].average_from=0.5", "time.output_interval=0.01"};
+    const char *sets[] = {"time.end=6", "time.dt_max=0.001", "output.vtk=false",
+                          "profiles[0].average_from=1.0", "time.output_interval=0.01"};
     ry_table s;
     ry_sim sim;
     run("cases/mps_hydrostatic.yaml", "hydro", 5, sets, &s, &sim);
-    int rows = 0;
-    for (int k = 10; k <= 38; k += k < 30 ? 10 : 8) { /* spacings under the top layer */
+    const int ks[] = {5, 10, 20, 30, 38}; /* spacings under the top layer */
+    for (int q = 0; q < 5; ++q) {
         double p, h;
         const double e =
-            ry_profile_hydrostatic_error(&sim, "column", 39 - k, 0.4, 1000.0, 9.81, &p, &h);
+            ry_profile_hydrostatic_error(&sim, "column", 39 - ks[q], 0.4, 1000.0, 9.81, &p, &h);
         assert_true(isfinite(e));
-        printf("hydrostatic: depth %.3f m: p = %.1f Pa (mean over 0.5-1.5 s), rho g h = %.1f Pa "
+        printf("hydrostatic: depth %.3f m: p = %.1f Pa (mean over 1-6 s), rho g h = %.1f Pa "
                "(%+.2f %%)\n",
                h, p, 1000.0 * 9.81 * h, 100 * e);
-        assert_true(fabs(e) <= (k >= 30 ? 0.03 : 0.08));
-        ++rows;
+        assert_true(fabs(e) <= 0.02);
     }
-    assert_true(rows == 4);
-    const int ct = ry_table_col(&s, "t"), cv = ry_table_col(&s, "max_speed");
-    double v1 = 0, v2 = 0;
+    const int ct = ry_table_col(&s, "t"), ck = ry_table_col(&s, "kinetic_energy");
+    double k1 = 0, k2 = 0;
+    int n1 = 0, n2 = 0;
     for (size_t r = 0; r < s.nrows; ++r) {
-        const double t = ry_table_at(&s, r, ct), v = ry_table_at(&s, r, cv);
-        if (t <= 0.5)
-            v1 = fmax(v1, v);
-        else
-            v2 = fmax(v2, v);
+        const double t = ry_table_at(&s, r, ct), k = ry_table_at(&s, r, ck);
+        if (t > 1.0 && t <= 3.5) k1 += k, ++n1;
+        if (t > 3.5) k2 += k, ++n2;
     }
-    printf("hydrostatic: largest speed %.4f m/s (t <= 0.5 s), %.4f m/s (t > 0.5 s)\n", v1, v2);
-    assert_true(v2 < 0.1 && v2 <= 2 * v1);
+    assert_true(n1 > 100 && n2 > 100);
+    k1 /= n1;
+    k2 /= n2;
+    const double mass = 1000.0 * 0.2 * 0.4, vrms = sqrt(2 * k2 / mass);
+    printf("hydrostatic: mean kinetic energy %.3g J/m (1-3.5 s), %.3g J/m (3.5-6 s), rms speed "
+           "%.4f m/s\n",
+           k1, k2, vrms);
+    assert_true(k2 <= 1.25 * k1 && vrms < 0.03);
     ry_sim_free(&sim);
     ry_table_free(&s);
 }
