@@ -325,7 +325,24 @@ static void validate_rest(const char *root, const char *out, int *failures) {
                  failures);
 }
 
-/* MPS dam break against Martin & Moyce, beside WCSPH at the same spacing (a/20). */
+/* The front Z = front_x / a of a series at T = t sqrt(2 g / a), linear between rows (NAN
+ * outside the series). */
+static double front_Z(const ry_table *s, double T, double a, double g) {
+    const int ct = ry_table_col(s, "t"), cx = ry_table_col(s, "front_x");
+    if (ct < 0 || cx < 0) return NAN;
+    const double t = T / sqrt(2 * g / a);
+    for (size_t r = 1; r < s->nrows; ++r) {
+        const double t0 = ry_table_at(s, r - 1, ct), t1 = ry_table_at(s, r, ct);
+        if (t0 <= t && t <= t1 && t1 > t0) {
+            const double x0 = ry_table_at(s, r - 1, cx), x1 = ry_table_at(s, r, cx);
+            return (x0 + (x1 - x0) * (t - t0) / (t1 - t0)) / a;
+        }
+    }
+    return NAN;
+}
+
+/* MPS dam break against Martin & Moyce, beside WCSPH at the same spacing (a/20), and MPS at
+ * a/40 to tell the resolution's share of the difference from the experiment's. */
 static void validate_dam_break_mps(const char *root, const char *out, int *failures) {
     ry_error err = {0};
     char ref_path[4096];
@@ -344,43 +361,67 @@ static void validate_dam_break_mps(const char *root, const char *out, int *failu
         ++*failures;
         return;
     }
-    ry_plot_panel(p, 0, "Martin & Moyce column, a/20: MPS and WCSPH", "T = t sqrt(2g/a)",
-                  "Z = front / a", &err);
-    printf("Dam break, Martin & Moyce (1952), n^2 = 2, a/20: surge front Z(T), T <= 3\n");
-    printf("  %-8s %10s %8s %8s %6s %8s %8s %8s %8s\n", "scheme", "particles", "max|dZ|", "rms dZ",
+    ry_plot_panel(p, 0, "Martin & Moyce column: MPS (a/20, a/40) and WCSPH (a/20)",
+                  "T = t sqrt(2g/a)", "Z = front / a", &err);
+    printf("Dam break, Martin & Moyce (1952), n^2 = 2: surge front Z(T), T <= 3\n");
+    printf("  %-10s %8s %8s %8s %6s %8s %8s %8s %8s\n", "scheme", "particles", "max|dZ|", "rms dZ",
            "dT", "rms(dT)", "outside", "in_wall", "wall_s");
-    const char *files[2] = {"cases/mps_dam_break_mm.yaml", "cases/dam_break_mm.yaml"};
-    const char *names[2] = {"MPS", "WCSPH"};
-    for (int k = 0; k < 2; ++k) {
+    const char *files[3] = {"cases/mps_dam_break_mm.yaml", "cases/mps_dam_break_mm.yaml",
+                            "cases/dam_break_mm.yaml"};
+    const char *names[3] = {"MPS a/20", "MPS a/40", "WCSPH a/20"};
+    const char *subs[3] = {"dam_break_mm_MPS", "dam_break_mm_MPS_a40", "dam_break_mm_WCSPH"};
+    ry_table fine = {0}, coarse = {0};
+    for (int k = 0; k < 3; ++k) {
         const char *sets[] = {"time.end=0.18", "time.output_interval=0.001", "output.vtk=false",
-                              "measure=[front_x, mass, kinetic_energy, outside, in_wall]"};
-        char sub[64];
-        snprintf(sub, sizeof sub, "dam_break_mm_%s", names[k]);
+                              "measure=[front_x, mass, kinetic_energy, outside, in_wall]",
+                              k == 1 ? "spacing=0.00142875" : "spacing=0.0028575"};
         ry_table s;
         ry_sim sim;
         ry_run_stats stats;
-        if (run_mps(root, out, files[k], sub, 4, sets, &s, &sim, &stats, &err) != RY_OK) {
+        if (run_mps(root, out, files[k], subs[k], 5, sets, &s, &sim, &stats, &err) != RY_OK) {
             printf("  %-8s failed: %s\n", names[k], err.msg);
             ++*failures;
             continue;
         }
         ry_front_cmp cmp;
         if (ry_compare_front(&s, &ref, a, g, 3.0, &cmp, &err) != RY_OK) ++*failures;
-        printf("  %-8s %10zu %8.3f %8.3f %6.3f %8.3f %8.0f %8.0f %8.1f\n", names[k], sim.ps.n,
+        printf("  %-10s %8zu %8.3f %8.3f %6.3f %8.3f %8.0f %8.0f %8.1f\n", names[k], sim.ps.n,
                cmp.max_dev, cmp.rms_dev, cmp.shift, cmp.rms_dev_shifted,
                ry_column_max(&s, "outside"), ry_column_max(&s, "in_wall"), stats.wall_s);
         ry_cli_add_series(p, 0, names[k], &s, "t", sqrt(2 * g / a), "front_x", 1 / a,
                           ry_plot_style_line(), &err);
         if (k == 0) {
-            ry_cli_check("MPS: front within 0.30 (max) and 0.20 (rms) of the experiment",
-                         cmp.max_dev <= 0.30 && cmp.rms_dev <= 0.20, failures);
+            /* The experiment's gate takes time to lift: fronts converged in resolution run
+             * ahead of it by up to 0.44 (MPS) and 0.34 (WCSPH) at T = 3.3 (docs/validation.md). */
+            ry_cli_check("MPS: front within 0.45 (max) and 0.35 (rms) of the experiment",
+                         cmp.max_dev <= 0.45 && cmp.rms_dev <= 0.35, failures);
             ry_cli_check("MPS: mass exact, no fluid outside the tank",
                          ry_mass_drift(&s) <= 1e-12 && ry_column_max(&s, "outside") == 0, failures);
         }
         ry_sim_free(&sim);
-        ry_table_free(&s);
+        if (k == 0)
+            coarse = s;
+        else if (k == 1)
+            fine = s;
+        else
+            ry_table_free(&s);
     }
+    /* Resolution: the MPS front at a/20 against a/40 at the experiment's times. */
+    double dres = 0;
+    int nres = 0;
     const int cT = ry_table_col(&ref, "T"), cZ = ry_table_col(&ref, "Z");
+    for (size_t r = 0; cT >= 0 && r < ref.nrows; ++r) {
+        const double T = ry_table_at(&ref, r, cT);
+        if (T > 3.0) continue;
+        const double d = front_Z(&coarse, T, a, g) - front_Z(&fine, T, a, g);
+        dres = isfinite(d) ? fmax(dres, fabs(d)) : INFINITY;
+        ++nres;
+    }
+    printf("  MPS a/20 against a/40: largest |dZ| %.3f over %d times\n", dres, nres);
+    ry_cli_check("MPS: front at a/20 within 0.05 of a/40 (resolution)", nres > 0 && dres <= 0.05,
+                 failures);
+    ry_table_free(&coarse);
+    ry_table_free(&fine);
     if (cT >= 0 && cZ >= 0) {
         double *x = ry_table_column(&ref, cT), *y = ry_table_column(&ref, cZ);
         if (x && y)
