@@ -52,6 +52,9 @@ double ry_column_max_from(const ry_table *series, const char *name, double t0);
 /* Mean of a column over the rows with t >= t0 (NAN when there is none); *rows receives their
  * number (may be NULL). */
 double ry_column_mean_from(const ry_table *series, const char *name, double t0, int *rows);
+/* The same over the rows with t0 <= t < t1. */
+double ry_column_mean_between(const ry_table *series, const char *name, double t0, double t1,
+                              int *rows);
 
 /* Static drop: mean pressure of the fluid particles within r_in of centre minus that of the
  * fluid particles farther than r_out (2D: x, y; 3D: x, y, z). NAN when either set is empty. */

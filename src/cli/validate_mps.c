@@ -73,17 +73,9 @@ static void validate_hydrostatic(const char *root, const char *out, int quick, i
         worst = isfinite(e) ? fmax(worst, fabs(e)) : INFINITY;
     }
     /* No growing oscillation: the kinetic energy of the second half against the first. */
-    const int ct = ry_table_col(&s, "t"), ck = ry_table_col(&s, "kinetic_energy");
     const double tend = quick ? 3.0 : 6.0, tmid = 0.5 * (1.0 + tend);
-    double k1 = 0, k2 = 0;
-    int n1 = 0, n2 = 0;
-    for (size_t r = 0; ct >= 0 && ck >= 0 && r < s.nrows; ++r) {
-        const double t = ry_table_at(&s, r, ct), k = ry_table_at(&s, r, ck);
-        if (t > 1.0 && t <= tmid) k1 += k, ++n1;
-        if (t > tmid) k2 += k, ++n2;
-    }
-    k1 = n1 ? k1 / n1 : NAN;
-    k2 = n2 ? k2 / n2 : NAN;
+    const double k1 = ry_column_mean_between(&s, "kinetic_energy", 1.0, tmid, NULL),
+                 k2 = ry_column_mean_from(&s, "kinetic_energy", tmid, NULL);
     const double vrms = sqrt(2 * k2 / (1000.0 * 0.2 * 0.4));
     printf("  mean kinetic energy %.3g J/m (1-%.1f s), %.3g J/m (%.1f-%.0f s), rms speed %.4f m/s; "
            "largest speed %.3f m/s; %.2f PPE iterations per step; %.1f s wall\n",
@@ -325,20 +317,37 @@ static void validate_rest(const char *root, const char *out, int *failures) {
                  failures);
 }
 
-/* The front Z = front_x / a of a series at T = t sqrt(2 g / a), linear between rows (NAN
- * outside the series). */
-static double front_Z(const ry_table *s, double T, double a, double g) {
-    const int ct = ry_table_col(s, "t"), cx = ry_table_col(s, "front_x");
-    if (ct < 0 || cx < 0) return NAN;
-    const double t = T / sqrt(2 * g / a);
-    for (size_t r = 1; r < s->nrows; ++r) {
-        const double t0 = ry_table_at(s, r - 1, ct), t1 = ry_table_at(s, r, ct);
-        if (t0 <= t && t <= t1 && t1 > t0) {
-            const double x0 = ry_table_at(s, r - 1, cx), x1 = ry_table_at(s, r, cx);
-            return (x0 + (x1 - x0) * (t - t0) / (t1 - t0)) / a;
+/* Largest |Z1 - Z2| between the fronts Z = front_x / a of two series at the reference's times
+ * T <= T_max (T = t sqrt(2 g / a), linear between rows); *n receives their number. INFINITY
+ * where a time lies outside either series. */
+static double front_gap(const ry_table *s1, const ry_table *s2, const ry_table *ref, double a,
+                        double g, double T_max, int *n) {
+    const ry_table *s[2] = {s1, s2};
+    double *t[2] = {NULL, NULL}, *x[2] = {NULL, NULL};
+    for (int k = 0; k < 2; ++k) {
+        const int ct = ry_table_col(s[k], "t"), cx = ry_table_col(s[k], "front_x");
+        if (ct >= 0 && cx >= 0) {
+            t[k] = ry_table_column(s[k], ct);
+            x[k] = ry_table_column(s[k], cx);
         }
     }
-    return NAN;
+    const int cT = ry_table_col(ref, "T");
+    double gap = t[0] && x[0] && t[1] && x[1] && cT >= 0 ? 0 : INFINITY;
+    *n = 0;
+    for (size_t r = 0; isfinite(gap) && r < ref->nrows; ++r) {
+        const double T = ry_table_at(ref, r, cT), tq = T / sqrt(2 * g / a);
+        if (T > T_max) continue;
+        const double d = (ry_interp_linear(t[0], x[0], s1->nrows, tq) -
+                          ry_interp_linear(t[1], x[1], s2->nrows, tq)) /
+                         a;
+        gap = isfinite(d) ? fmax(gap, fabs(d)) : INFINITY;
+        ++*n;
+    }
+    for (int k = 0; k < 2; ++k) {
+        free(t[k]);
+        free(x[k]);
+    }
+    return gap;
 }
 
 /* MPS dam break against Martin & Moyce, beside WCSPH at the same spacing (a/20), and MPS at
@@ -407,16 +416,9 @@ static void validate_dam_break_mps(const char *root, const char *out, int *failu
             ry_table_free(&s);
     }
     /* Resolution: the MPS front at a/20 against a/40 at the experiment's times. */
-    double dres = 0;
-    int nres = 0;
+    int nres;
+    const double dres = front_gap(&coarse, &fine, &ref, a, g, 3.0, &nres);
     const int cT = ry_table_col(&ref, "T"), cZ = ry_table_col(&ref, "Z");
-    for (size_t r = 0; cT >= 0 && r < ref.nrows; ++r) {
-        const double T = ry_table_at(&ref, r, cT);
-        if (T > 3.0) continue;
-        const double d = front_Z(&coarse, T, a, g) - front_Z(&fine, T, a, g);
-        dres = isfinite(d) ? fmax(dres, fabs(d)) : INFINITY;
-        ++nres;
-    }
     printf("  MPS a/20 against a/40: largest |dZ| %.3f over %d times\n", dres, nres);
     ry_cli_check("MPS: front at a/20 within 0.05 of a/40 (resolution)", nres > 0 && dres <= 0.05,
                  failures);

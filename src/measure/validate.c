@@ -267,17 +267,24 @@ double ry_column_max_from(const ry_table *series, const char *name, double t0) {
     return m;
 }
 
-double ry_column_mean_from(const ry_table *series, const char *name, double t0, int *rows) {
+double ry_column_mean_between(const ry_table *series, const char *name, double t0, double t1,
+                              int *rows) {
     const int c = ry_table_col(series, name), ct = ry_table_col(series, "t");
     double s = 0;
     int k = 0;
-    for (size_t r = 0; c >= 0 && ct >= 0 && r < series->nrows; ++r)
-        if (series->data[r * series->ncols + ct] >= t0) {
+    for (size_t r = 0; c >= 0 && ct >= 0 && r < series->nrows; ++r) {
+        const double t = series->data[r * series->ncols + ct];
+        if (t >= t0 && t < t1) {
             s += series->data[r * series->ncols + c];
             ++k;
         }
+    }
     if (rows) *rows = k;
     return k ? s / k : NAN;
+}
+
+double ry_column_mean_from(const ry_table *series, const char *name, double t0, int *rows) {
+    return ry_column_mean_between(series, name, t0, INFINITY, rows);
 }
 
 double ry_pressure_jump(const ry_sim *sim, const double *centre, double r_in, double r_out) {

@@ -54,17 +54,10 @@ static void test_hydrostatic_column(void **state) {
                h, p, 1000.0 * 9.81 * h, 100 * e);
         assert_true(fabs(e) <= 0.02);
     }
-    const int ct = ry_table_col(&s, "t"), ck = ry_table_col(&s, "kinetic_energy");
-    double k1 = 0, k2 = 0;
-    int n1 = 0, n2 = 0;
-    for (size_t r = 0; r < s.nrows; ++r) {
-        const double t = ry_table_at(&s, r, ct), k = ry_table_at(&s, r, ck);
-        if (t > 1.0 && t <= 3.5) k1 += k, ++n1;
-        if (t > 3.5) k2 += k, ++n2;
-    }
+    int n1, n2;
+    const double k1 = ry_column_mean_between(&s, "kinetic_energy", 1.0, 3.5, &n1),
+                 k2 = ry_column_mean_from(&s, "kinetic_energy", 3.5, &n2);
     assert_true(n1 > 100 && n2 > 100);
-    k1 /= n1;
-    k2 /= n2;
     const double mass = 1000.0 * 0.2 * 0.4, vrms = sqrt(2 * k2 / mass);
     printf("hydrostatic: mean kinetic energy %.3g J/m (1-3.5 s), %.3g J/m (3.5-6 s), rms speed "
            "%.4f m/s\n",
