@@ -256,7 +256,8 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_particles_add_field(ps, "free_surface", "1", -1, RY_FIELD_OUTPUT, &M->f_surf, err));
     RY_TRY(rheology_init(sim, M, err));
     /* Outlets are sinks: the fluid that crosses the downstream face is removed, and the free
-     * surface this leaves holds p = 0 (an open top, an overflow, a pipe's exit). */
+     * surface this leaves takes the free-surface condition (an open top, an overflow, a pipe's
+     * exit). */
     sim->open_sink = 1;
     for (int q = 0; q < sim->nopen; ++q) {
         char k[64], where[256];
@@ -264,7 +265,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
         RY_CHECK(err, sim->open[q].type == RY_OPEN_INLET || sim->open[q].pressure == 0.0,
                  RY_ERR_INPUT,
                  "%s: key '%s': scheme mps takes outlets at pressure 0 only (its outlets remove "
-                 "the fluid at the downstream face, where the free surface holds p = 0)",
+                 "the fluid at the downstream face, a free surface)",
                  ry_case_where(c, k, where, sizeof where), k);
     }
     for (size_t i = 0; i < ps->n; ++i) {
