@@ -1,6 +1,6 @@
 #!/bin/sh
 # Command-line behaviour: help, version, errors with file:line:key and exit code 2, a short run
-# with its outputs, the summary line, and a clean stop on SIGINT.
+# with its outputs, the summary line, a clean stop on SIGINT, and every case in cases/ loading.
 # usage: test_cli.sh RYUSHI SOURCE_DIR
 set -u
 RY=$1
@@ -59,5 +59,10 @@ rc=$?
 grep -q "interrupted" "$T/int.log" && ok || bad "no interruption message"
 [ -s "$T/int/series.csv" ] && [ -s "$T/int/dam_break_seed.pvd" ] && ok || bad "no output after SIGINT"
 ls "$T/int" | grep -q "tmp" && bad "temporary files left after SIGINT" || ok
+
+# Every shipped case loads and sets up (its particles built, its keys valid).
+for f in "$SRC"/cases/*.yaml; do
+    "$RY" info "$f" > "$T/info.log" 2>&1 && ok || bad "$f does not load: $(tail -n 2 "$T/info.log")"
+done
 
 finish
