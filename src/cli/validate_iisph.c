@@ -470,7 +470,7 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
             if (strcmp((*q)->name, "inflow_volume") == 0) (*q)->eval(&sim, &vin, err);
             if (strcmp((*q)->name, "iisph_iterations_mean") == 0) (*q)->eval(&sim, &mean, err);
         }
-        size_t oil = 0;
+        size_t oil = 0; /* the oil is the second material in both eye cases */
         for (size_t i = 0; i < sim.ps.n; ++i)
             oil += sim.ps.kind[i] == RY_KIND_FLUID && sim.ps.material[i] == 1;
         const double kept = vin > 0 ? (double)oil * pow(sim.dx, 3) / vin : NAN;
@@ -525,7 +525,9 @@ int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failu
     for (int k = 0; k < nt; ++k) {
         dff = fmax(dff, fabs(post[k].filled - fine[k].filled));
         doc = fmax(doc, fabs(post[k].contact - fine[k].contact));
-        dkept = fmax(dkept, fmax(fabs(post[k].retained - 1), fabs(fine[k].retained - 1)));
+        const double dk = fmax(fabs(post[k].retained - 1), fabs(fine[k].retained - 1));
+        dkept =
+            isfinite(post[k].retained) && isfinite(fine[k].retained) ? fmax(dkept, dk) : INFINITY;
     }
     printf("  posterior drain: largest |oil kept - 1| %.3f; dt 2e-4 against 1e-4 s: filled "
            "fraction within %.4f, contact within %.4f\n",
