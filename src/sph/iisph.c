@@ -32,6 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mps/sparse.h"
 #include "ryushi/sim.h"
 #include "ryushi/surface_tension.h"
 #include "sph/iisph.h"
@@ -67,6 +68,14 @@ typedef struct iisph {
     ry_st_work stw;        /* the Laplace jump P_i of the surface particles (0 elsewhere) and their
                               tag (1) */
     double coll_r, coll_e; /* artificial repulsion: distance [m], restitution */
+    /* scheme.viscosity: implicit (Morris form, backward Euler; docs/iisph.md) */
+    int implicit;
+    double vtol;
+    ry_csr A;
+    int32_t *unk;    /* unknown number of a mobile particle, else -1 */
+    double *vb, *vx; /* right-hand sides (3 per unknown); one component's and its solution */
+    size_t vcap;
+    long viters_last, viters_total;
 } iisph;
 
 /* Kinds that move under the fluid equations (and take part as fluid): fluid and outlet
@@ -99,6 +108,16 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     RY_TRY(ry_case_choice(c, "scheme.viscosity_correction", "none", corrections, &corr, err));
     static const char *const forms[] = {"projected", "morris", NULL};
     RY_TRY(ry_case_choice(c, "scheme.viscous_form", "projected", forms, &s->morris, err));
+    static const char *const vschemes[] = {"explicit", "implicit", NULL};
+    RY_TRY(ry_case_choice(c, "scheme.viscosity", "explicit", vschemes, &s->implicit, err));
+    double vtol = 1e-8;
+    RY_TRY(ry_case_double(c, "scheme.viscosity_tolerance", &vtol, 1e-14, 1e-2, &s->vtol, err));
+    if (s->implicit) {
+        char where[256];
+        RY_CHECK(err, s->morris, RY_ERR_INPUT,
+                 "%s: key 'scheme.viscosity': implicit needs scheme.viscous_form: morris",
+                 ry_case_where(c, "scheme.viscosity", where, sizeof where));
+    }
     /* The explicit limits keep 39 % of each form's stability limit on the lattice (iisph_dt). */
     s->cvisc = s->morris ? 0.125 : 0.045;
     double zero = 0, eps = 0.01;
@@ -172,6 +191,10 @@ static void iisph_free(void *state) {
     ry_sph_rheo_free(&s->rheo);
     free(s->delta);
     free(s->mu);
+    ry_csr_free(&s->A);
+    free(s->unk);
+    free(s->vb);
+    free(s->vx);
     ry_st_work_free(&s->stw);
     free(s);
 }
@@ -265,7 +288,7 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
         double a[3] = {0, 0, 0};
         if (MOBILE[kind[i]]) {
             const double mui = dyn_viscosity(sim, s, i);
-            for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            for (size_t q = off[i]; !s->implicit && q < off[i + 1]; ++q) {
                 const uint32_t j = nb[q];
                 const double *P = cv + q * RY_PAIR_STRIDE;
                 if (P[RY_PW_W] == 0) continue;
@@ -294,6 +317,113 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
         }
         for (int d = 0; d < 3; ++d) acc[3 * i + d] = a[d];
     }
+    return RY_OK;
+}
+
+/* Implicit viscosity (scheme.viscosity: implicit): the Morris term of densities_and_forces by
+ * backward Euler, for each velocity component
+ *   m_i v_i + sum_j c_ij (v_i - v_j) = m_i v*_i,  c_ij = -2 dt V_i V_j mu_ij x_ij . grad_i W_ij
+ *                                                           / (r_ij^2 + 0.01 h^2) >= 0,
+ * (the explicit term times m_i, whose pair coefficients are symmetric), walls and inlets with
+ * their velocity (or the ghost velocity) as known values. The matrix is symmetric positive
+ * definite: conjugate gradients with the Jacobi preconditioner (mps/sparse.h), from v*.
+ * The viscous acceleration (v - v*)/dt is added to acc. */
+static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    RY_CHECK(err, sim->par == NULL, RY_ERR_INPUT,
+             "scheme.viscosity: implicit runs on one process only (use threads)");
+    if (s->vcap < n) {
+        const size_t cap = n + n / 4 + 16;
+        int32_t *u = realloc(s->unk, cap * sizeof *u);
+        if (u) s->unk = u;
+        double *b = realloc(s->vb, 3 * cap * sizeof *b);
+        if (b) s->vb = b;
+        double *x = realloc(s->vx, 2 * cap * sizeof *x);
+        if (x) s->vx = x;
+        RY_CHECK(err, u && b && x, RY_ERR_NOMEM, "out of memory (implicit viscosity)");
+        s->vcap = cap;
+    }
+    size_t nunk = 0;
+    for (size_t i = 0; i < n; ++i) s->unk[i] = MOBILE[ps->kind[i]] ? (int32_t)nunk++ : -1;
+    s->viters_last = 0;
+    if (nunk == 0) return RY_OK;
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = sim->nl.j;
+    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+    const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h;
+    ry_csr *A = &s->A;
+    RY_TRY(ry_csr_reserve(A, nunk, 0, err));
+    A->row[0] = 0;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < n; ++i) {
+        if (s->unk[i] < 0) continue;
+        size_t len = 1;
+        for (size_t q = off[i]; q < off[i + 1]; ++q)
+            len += s->unk[nb[q]] >= 0 && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
+        A->row[(size_t)s->unk[i] + 1] = len;
+    }
+    for (size_t k = 0; k < nunk; ++k) A->row[k + 1] += A->row[k];
+    RY_TRY(ry_csr_reserve(A, nunk, A->row[nunk], err));
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (s->unk[i] < 0) continue;
+        const size_t k = (size_t)s->unk[i];
+        size_t p = A->row[k];
+        const size_t pdiag = p++;
+        const double mui = dyn_viscosity(sim, s, i), vi = 1.0 / delta[i];
+        double diag = m[i], known[3] = {0, 0, 0};
+        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            const uint32_t j = nb[q];
+            const double *P = cv + q * RY_PAIR_STRIDE;
+            if (P[RY_PW_W] == 0) continue;
+            const int wall = !MOBILE[ps->kind[j]];
+            double c = 0;
+            if (!(wall && s->slip)) {
+                const double muj = wall ? mui : dyn_viscosity(sim, s, j);
+                if (mui + muj > 0) {
+                    double xg = 0;
+                    for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
+                    const double vj = wall ? vi : 1.0 / delta[j];
+                    c = -2.0 * dt * vi * vj * (2 * mui * muj / (mui + muj)) * xg /
+                        (P[RY_PW_R2] + eta2);
+                }
+            }
+            diag += c;
+            if (!wall) {
+                A->col[p] = (uint32_t)s->unk[j];
+                A->val[p++] = -c;
+            } else {
+                for (int d = 0; d < dim; ++d) known[d] += c * s->vg[d][j];
+            }
+        }
+        A->col[pdiag] = (uint32_t)k;
+        A->val[pdiag] = diag;
+        A->diag[k] = diag;
+        for (int d = 0; d < 3; ++d)
+            s->vb[3 * k + d] = d < dim ? m[i] * ps->f[RY_F_VX + d][i] + known[d] : 0.0;
+    }
+    double *bd = s->vx, *xd = s->vx + nunk; /* component d: right-hand side, solution */
+    for (int d = 0; d < dim; ++d) {
+        double *v = ps->f[RY_F_VX + d];
+        for (size_t i = 0; i < n; ++i)
+            if (s->unk[i] >= 0) {
+                bd[s->unk[i]] = s->vb[3 * (size_t)s->unk[i] + d];
+                xd[s->unk[i]] = v[i];
+            }
+        int it = 0;
+        double res = 0;
+        RY_TRY(ry_csr_pcg(A, bd, xd, s->vtol, (int)(10 * nunk + 100), &it, &res, NULL, err));
+        for (size_t i = 0; i < n; ++i)
+            if (s->unk[i] >= 0) {
+                const double vn = xd[s->unk[i]];
+                s->acc[3 * i + d] += (vn - v[i]) / dt;
+                v[i] = vn;
+            }
+        s->viters_last += it;
+    }
+    s->viters_total += s->viters_last;
     return RY_OK;
 }
 
@@ -556,8 +686,9 @@ static ry_status iisph_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
      * the Morris limit; cvisc = 0.045 keeps the same share of the projected one. At 0.125 a
      * viscous film (nu = 1e-4 m^2/s, 10 particles deep) threw its surface particles at several
      * times its speed. */
-    if (numax > 0) t = fmin(t, s->cvisc * h * h / (numax * s->mu_corr));
-    t = fmin(t, ry_sph_rheo_dt(&s->rheo, sim, MOBILE, h, sim->cfl, s->cvisc / s->mu_corr));
+    if (numax > 0 && !s->implicit) t = fmin(t, s->cvisc * h * h / (numax * s->mu_corr));
+    t = fmin(t, ry_sph_rheo_dt(&s->rheo, sim, MOBILE, h, sim->cfl,
+                               s->implicit ? INFINITY : s->cvisc / s->mu_corr));
     if (s->colour_on) t = fmin(t, ry_colour_dt(&s->colour, sim));
     t = fmin(t, ry_st_capillary_dt(&s->st, sim));
     if (!isfinite(t)) t = sim->dt_max > 0 ? sim->dt_max : 1e-3 * sim->t_end;
@@ -589,6 +720,7 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
         if (!MOBILE[ps->kind[i]]) continue;
         for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][i] += dt * s->acc[3 * i + d];
     }
+    if (s->implicit) RY_TRY(viscous_implicit(sim, s, dt, err));
     if (sim->par)
         for (int d = 0; d < dim; ++d) sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
     const long it = pressure_solve(sim, s, dt);
@@ -675,9 +807,14 @@ static int iisph_vars(void *state, ry_state_var *v, int max) {
 
 static void iisph_report(void *state, char *buf, size_t size) {
     const iisph *s = state;
-    snprintf(
+    const double solves = s->solves ? (double)s->solves : 1.0;
+    const int k = snprintf(
         buf, size, "iisph_iterations_mean=%.3g iisph_iterations_last=%ld iisph_error_last=%.3g",
-        s->solves ? (double)s->iters_total / (double)s->solves : 0.0, s->iters_last, s->error_last);
+        (double)s->iters_total / solves, s->iters_last, s->error_last);
+    /* implicit viscosity: conjugate-gradient iterations per step, all components together */
+    if (s->implicit && k > 0 && (size_t)k < size)
+        snprintf(buf + k, size - (size_t)k, " viscous_iterations_mean=%.3g",
+                 (double)s->viters_total / solves);
 }
 
 int ry_iisph_iterations(const ry_sim *sim, double *last, double *mean) {
