@@ -485,7 +485,8 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
 
 /* The eye cases (docs/iisph.md, "Eye case"): the ports facing each other (cases/eye_sphere.yaml)
  * and the drainage at the posterior pole (cases/eye_posterior_drain.yaml), run in segments
- * with slice pictures; the posterior-drain case again at half the time step. Checks: with the
+ * with slice pictures; the posterior-drain case again at a third of its time step (implicit
+ * viscosity: about 6e-4 s, set by the speeds; again at 2e-4 s). Checks: with the
  * drainage where the oil arrives last, the cavity keeps the injected oil (within 3 %), and the
  * filling and the contact agree at the two time steps. */
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures) {
@@ -500,7 +501,7 @@ int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failu
     ry_plot_title(p, "Silicone-oil filling, 24 mm cavity, supine: slice y = 0", &err);
     printf("Eye: silicone-oil filling, 1.5 mm, %d thread(s)\n", omp_get_max_threads());
     const char *vtk[] = {"output.vtk=false"};
-    const char *half[] = {"output.vtk=false", "time.dt_max=1.0e-4"};
+    const char *small[] = {"output.vtk=false", "time.dt_max=2.0e-4"};
     eye_state post[NT_MAX], fine[NT_MAX];
     if (eye_segments(root, out, "cases/eye_sphere.yaml", "eye_sphere", "ports facing", 1, vtk,
                      times, nt, p, 0, NULL, &err) != RY_OK ||
@@ -516,8 +517,8 @@ int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failu
     else
         printf("  plot: %s\n", png);
     ry_plot_free(p);
-    if (eye_segments(root, out, "cases/eye_posterior_drain.yaml", "eye_posterior_drain_dt1e-4",
-                     "posterior drain, dt <= 1e-4 s", 2, half, times, nt, NULL, 0, fine,
+    if (eye_segments(root, out, "cases/eye_posterior_drain.yaml", "eye_posterior_drain_dt2e-4",
+                     "posterior drain, dt <= 2e-4 s", 2, small, times, nt, NULL, 0, fine,
                      &err) != RY_OK)
         return fail(failures, &err);
     double dff = 0, doc = 0, dkept = 0;
@@ -528,14 +529,14 @@ int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failu
         dkept =
             isfinite(post[k].retained) && isfinite(fine[k].retained) ? fmax(dkept, dk) : INFINITY;
     }
-    printf("  posterior drain: largest |oil kept - 1| %.3f; dt 2e-4 against 1e-4 s: filled "
+    printf("  posterior drain: largest |oil kept - 1| %.3f; its own step against 2e-4 s: filled "
            "fraction within %.4f, contact within %.4f\n",
            dkept, dff, doc);
     verdict(failures, "eye, posterior drain: the cavity keeps the injected oil within 3 %",
             dkept <= 0.03);
-    verdict(failures, "eye, posterior drain: filled fraction, dt 2e-4 vs 1e-4 s, within 0.01",
+    verdict(failures, "eye, posterior drain: filled fraction, own step vs 2e-4 s, within 0.01",
             dff <= 0.01);
-    verdict(failures, "eye, posterior drain: oil-wall contact, dt 2e-4 vs 1e-4 s, within 0.02",
+    verdict(failures, "eye, posterior drain: oil-wall contact, own step vs 2e-4 s, within 0.02",
             doc <= 0.02);
     return 0;
 }
