@@ -74,6 +74,9 @@ typedef struct iisph {
     ry_csr A;
     int32_t *unk;    /* unknown number of a mobile particle, else -1 */
     double *vb, *vx; /* right-hand sides (3 per unknown); one component's and its solution */
+    double *vtmp;    /* per particle: a vector's halo entries on their way from the owners */
+    uint8_t *vown;   /* per unknown: owned by this process (a distributed run) */
+    ry_sim *vsim;
     size_t vcap;
     long viters_last, viters_total;
 } iisph;
@@ -195,6 +198,7 @@ static void iisph_free(void *state) {
     free(s->unk);
     free(s->vb);
     free(s->vx);
+    free(s->vown);
     ry_st_work_free(&s->stw);
     free(s);
 }
@@ -320,6 +324,27 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
     return RY_OK;
 }
 
+/* Iterations allowed to one component's viscous solve (the same on every process). */
+#define RY_IISPH_VISCOUS_MAX_ITER 5000
+
+/* A distributed implicit viscous solve: each process holds rows for its own and its halo's
+ * particles, and the solver uses its own only (ry_csr_dist); the halo entries of a vector come
+ * from their owners. */
+static void viscous_sync(void *ctx, double *v) {
+    iisph *s = ctx;
+    ry_sim *sim = s->vsim;
+    const size_t n = sim->ps.n;
+    for (size_t i = 0; i < n; ++i) s->vtmp[i] = s->unk[i] >= 0 ? v[s->unk[i]] : 0.0;
+    sim->par->sync(sim, s->vtmp, 1);
+    for (size_t i = 0; i < n; ++i)
+        if (s->unk[i] >= 0 && ry_sim_is_halo(sim, i)) v[s->unk[i]] = s->vtmp[i];
+}
+
+static double viscous_sum(void *ctx, double v) {
+    iisph *s = ctx;
+    return s->vsim->par->sum(s->vsim, v);
+}
+
 /* Implicit viscosity (scheme.viscosity: implicit): the Morris term of densities_and_forces by
  * backward Euler, for each velocity component
  *   m_i v_i + sum_j c_ij (v_i - v_j) = m_i v*_i,  c_ij = -2 dt V_i V_j mu_ij x_ij . grad_i W_ij
@@ -332,23 +357,32 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    RY_CHECK(err, sim->par == NULL, RY_ERR_INPUT,
-             "scheme.viscosity: implicit runs on one process only (use threads)");
     if (s->vcap < n) {
         const size_t cap = n + n / 4 + 16;
         int32_t *u = realloc(s->unk, cap * sizeof *u);
         if (u) s->unk = u;
         double *b = realloc(s->vb, 3 * cap * sizeof *b);
         if (b) s->vb = b;
-        double *x = realloc(s->vx, 2 * cap * sizeof *x);
+        double *x = realloc(s->vx, 3 * cap * sizeof *x);
         if (x) s->vx = x;
-        RY_CHECK(err, u && b && x, RY_ERR_NOMEM, "out of memory (implicit viscosity)");
+        uint8_t *o = realloc(s->vown, cap * sizeof *o);
+        if (o) s->vown = o;
+        RY_CHECK(err, u && b && x && o, RY_ERR_NOMEM, "out of memory (implicit viscosity)");
+        s->vtmp = s->vx + 2 * cap;
         s->vcap = cap;
     }
     size_t nunk = 0;
     for (size_t i = 0; i < n; ++i) s->unk[i] = MOBILE[ps->kind[i]] ? (int32_t)nunk++ : -1;
+    ry_csr_dist dist, *dd = NULL;
+    if (sim->par) {
+        for (size_t i = 0; i < n; ++i)
+            if (s->unk[i] >= 0) s->vown[s->unk[i]] = !ry_sim_is_halo(sim, i);
+        s->vsim = sim;
+        dist = (ry_csr_dist){s->vown, viscous_sync, viscous_sum, s};
+        dd = &dist;
+    }
     s->viters_last = 0;
-    if (nunk == 0) return RY_OK;
+    if (nunk == 0 && !dd) return RY_OK; /* (distributed: the others' sums need this process) */
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
@@ -414,7 +448,7 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
             }
         int it = 0;
         double res = 0;
-        RY_TRY(ry_csr_pcg(A, bd, xd, s->vtol, (int)(10 * nunk + 100), &it, &res, NULL, err));
+        RY_TRY(ry_csr_pcg(A, bd, xd, s->vtol, RY_IISPH_VISCOUS_MAX_ITER, &it, &res, dd, err));
         for (size_t i = 0; i < n; ++i)
             if (s->unk[i] >= 0) {
                 const double vn = xd[s->unk[i]];
