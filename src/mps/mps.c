@@ -86,7 +86,7 @@ typedef struct mps {
     double *pr;          /* distance */
     size_t *gend, *lend; /* (per particle: allocated by scratch) */
     size_t pq_cap;
-    const ry_sim *sim;
+    ry_particle_unknowns pu; /* distributed run: the unknowns of the solve under way */
     size_t cap;
     int last_iters, last_viters;
     long total_iters, steps;
@@ -339,30 +339,10 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
 
 /* A distributed run (sim->par): the linear systems span the ranks. Vectors of unknowns reach
  * the halo copies through the particles. */
-static void dist_sync(void *ctx, double *v) {
-    mps *M = ctx;
-    ry_sim *sim = (ry_sim *)M->sim;
-    const size_t n = sim->ps.n;
-    for (size_t i = 0; i < n; ++i) M->ptmp[i] = M->unk[i] >= 0 ? v[M->unk[i]] : 0.0;
-    sim->par->sync(sim, M->ptmp, 1);
-    for (size_t i = 0; i < n; ++i)
-        if (M->unk[i] >= 0 && ry_sim_is_halo(sim, i)) v[M->unk[i]] = M->ptmp[i];
-}
-
-static double dist_sum(void *ctx, double v) {
-    mps *M = ctx;
-    ry_sim *sim = (ry_sim *)M->sim;
-    return sim->par->sum(sim, v);
-}
-
 /* The distribution of the current unknowns (NULL in a serial run). */
 static const ry_csr_dist *dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d) {
-    if (!sim->par) return NULL;
-    M->sim = sim;
-    for (size_t i = 0; i < sim->ps.n; ++i)
-        if (M->unk[i] >= 0) M->own[M->unk[i]] = !ry_sim_is_halo(sim, i);
-    *d = (ry_csr_dist){M->own, dist_sync, dist_sum, M};
-    return d;
+    M->pu = (ry_particle_unknowns){sim, M->unk, M->own, M->ptmp};
+    return ry_particle_dist(&M->pu, d);
 }
 
 /* Separation x_j - x_i (minimum image) and its square length. */

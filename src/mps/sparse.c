@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "mps/sparse.h"
+#include "ryushi/sim.h"
 
 static int grow(void **p, size_t *cap, size_t want, size_t size) {
     if (*cap >= want) return 1;
@@ -131,4 +132,29 @@ ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_
              "tolerance %.3g)",
              k, rn / bnorm, tol);
     return RY_OK;
+}
+
+static void particle_sync(void *ctx, double *v) {
+    ry_particle_unknowns *pu = ctx;
+    ry_sim *sim = (ry_sim *)pu->sim;
+    const size_t n = sim->ps.n;
+    for (size_t i = 0; i < n; ++i) pu->tmp[i] = pu->unk[i] >= 0 ? v[pu->unk[i]] : 0.0;
+    sim->par->sync(sim, pu->tmp, 1);
+    for (size_t i = 0; i < n; ++i)
+        if (pu->unk[i] >= 0 && ry_sim_is_halo(sim, i)) v[pu->unk[i]] = pu->tmp[i];
+}
+
+static double particle_sum(void *ctx, double v) {
+    ry_particle_unknowns *pu = ctx;
+    ry_sim *sim = (ry_sim *)pu->sim;
+    return sim->par->sum(sim, v);
+}
+
+const ry_csr_dist *ry_particle_dist(ry_particle_unknowns *pu, ry_csr_dist *d) {
+    const ry_sim *sim = pu->sim;
+    if (!sim->par) return NULL;
+    for (size_t i = 0; i < sim->ps.n; ++i)
+        if (pu->unk[i] >= 0) pu->own[pu->unk[i]] = !ry_sim_is_halo(sim, i);
+    *d = (ry_csr_dist){pu->own, particle_sync, particle_sum, pu};
+    return d;
 }

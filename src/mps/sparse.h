@@ -37,6 +37,22 @@ typedef struct ry_csr_dist {
     void *ctx;
 } ry_csr_dist;
 
+/* Unknowns numbered over a particle set (unk[i] >= 0: the unknown of particle i), for a
+ * system distributed with the particles: unknown k is owned where its particle is not a halo
+ * copy, and a vector's halo entries come from their owners through a per-particle array. The
+ * caller keeps own (room for every unknown) and tmp (room for every particle). */
+struct ry_sim;
+typedef struct ry_particle_unknowns {
+    const struct ry_sim *sim;
+    const int32_t *unk;
+    uint8_t *own;
+    double *tmp;
+} ry_particle_unknowns;
+
+/* Fills own and *d for pu (which must live as long as *d is used) and returns d; NULL in a
+ * serial run (sim->par NULL). */
+const ry_csr_dist *ry_particle_dist(ry_particle_unknowns *pu, ry_csr_dist *d);
+
 /* Solves A x = b for a symmetric positive definite A by conjugate gradients with the Jacobi
  * (diagonal) preconditioner, from the initial x, until |b - A x| <= tol |b| (2-norms) or
  * max_iter iterations. *iters receives the iterations, *resid the final relative residual.

@@ -74,9 +74,9 @@ typedef struct iisph {
     ry_csr A;
     int32_t *unk;    /* unknown number of a mobile particle, else -1 */
     double *vb, *vx; /* right-hand sides (3 per unknown); one component's and its solution */
-    double *vtmp;    /* per particle: a vector's halo entries on their way from the owners */
+    double *vtmp;    /* per particle: halo entries on their way from the owners */
     uint8_t *vown;   /* per unknown: owned by this process (a distributed run) */
-    ry_sim *vsim;
+    ry_particle_unknowns vpu; /* the distribution of the solve under way */
     size_t vcap;
     long viters_last, viters_total;
 } iisph;
@@ -327,24 +327,6 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
 /* Iterations allowed to one component's viscous solve (the same on every process). */
 #define RY_IISPH_VISCOUS_MAX_ITER 5000
 
-/* A distributed implicit viscous solve: each process holds rows for its own and its halo's
- * particles, and the solver uses its own only (ry_csr_dist); the halo entries of a vector come
- * from their owners. */
-static void viscous_sync(void *ctx, double *v) {
-    iisph *s = ctx;
-    ry_sim *sim = s->vsim;
-    const size_t n = sim->ps.n;
-    for (size_t i = 0; i < n; ++i) s->vtmp[i] = s->unk[i] >= 0 ? v[s->unk[i]] : 0.0;
-    sim->par->sync(sim, s->vtmp, 1);
-    for (size_t i = 0; i < n; ++i)
-        if (s->unk[i] >= 0 && ry_sim_is_halo(sim, i)) v[s->unk[i]] = s->vtmp[i];
-}
-
-static double viscous_sum(void *ctx, double v) {
-    iisph *s = ctx;
-    return s->vsim->par->sum(s->vsim, v);
-}
-
 /* Implicit viscosity (scheme.viscosity: implicit): the Morris term of densities_and_forces by
  * backward Euler, for each velocity component
  *   m_i v_i + sum_j c_ij (v_i - v_j) = m_i v*_i,  c_ij = -2 dt V_i V_j mu_ij x_ij . grad_i W_ij
@@ -373,14 +355,11 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
     }
     size_t nunk = 0;
     for (size_t i = 0; i < n; ++i) s->unk[i] = MOBILE[ps->kind[i]] ? (int32_t)nunk++ : -1;
-    ry_csr_dist dist, *dd = NULL;
-    if (sim->par) {
-        for (size_t i = 0; i < n; ++i)
-            if (s->unk[i] >= 0) s->vown[s->unk[i]] = !ry_sim_is_halo(sim, i);
-        s->vsim = sim;
-        dist = (ry_csr_dist){s->vown, viscous_sync, viscous_sum, s};
-        dd = &dist;
-    }
+    /* distributed: each process holds rows for its own and its halo's particles and the solver
+     * uses its own only (NULL in a serial run) */
+    ry_csr_dist dist;
+    s->vpu = (ry_particle_unknowns){sim, s->unk, s->vown, s->vtmp};
+    const ry_csr_dist *dd = ry_particle_dist(&s->vpu, &dist);
     s->viters_last = 0;
     if (nunk == 0 && !dd) return RY_OK; /* (distributed: the others' sums need this process) */
     const size_t *off = sim->nl.offset;
