@@ -1,12 +1,15 @@
 /* ryushi — rheology of a material: Newtonian, generalised Newtonian (power law, Carreau) and
- * visco-elastic (Oldroyd-B). Read from `materials[i].rheology` (docs/rheology.md); every
+ * visco-elastic (Oldroyd-B, Giesekus). Read from `materials[i].rheology` (docs/rheology.md); every
  * viscosity here is kinematic [m^2/s], as the material's `viscosity`.
  *
  * Generalised Newtonian: nu = nu(gamma_dot), gamma_dot = sqrt(2 D:D), D the rate of strain.
  *   power law: nu = k gamma_dot^(n - 1), bounded to [viscosity_min, viscosity_max];
  *   Carreau:   nu = nu_inf + (nu_0 - nu_inf) (1 + (t gamma_dot)^2)^((n - 1)/2).
  * Oldroyd-B: the solvent has the material's `viscosity` nu_s; the polymer stress tau obeys
- *   tau + lambda tau^(upper-convected) = 2 rho nu_p D. */
+ *   tau + lambda tau^(upper-convected) = 2 rho nu_p D.
+ * Giesekus: the same with the quadratic term of mobility alpha (0 <= alpha <= 1/2; 0 is
+ *   Oldroyd-B), which bounds the stress in extension and thins the fluid in shear:
+ *   tau + lambda tau^(upper-convected) + (alpha lambda / (rho nu_p)) tau . tau = 2 rho nu_p D. */
 #ifndef RYUSHI_RHEOLOGY_H
 #define RYUSHI_RHEOLOGY_H
 
@@ -17,7 +20,8 @@ typedef enum {
     RY_RHEO_NEWTONIAN = 0,
     RY_RHEO_POWER_LAW,
     RY_RHEO_CARREAU,
-    RY_RHEO_OLDROYD_B
+    RY_RHEO_OLDROYD_B,
+    RY_RHEO_GIESEKUS
 } ry_rheo_model;
 
 extern const char *const ry_rheology_names[]; /* NULL-terminated, in ry_rheo_model order */
@@ -28,20 +32,30 @@ typedef struct ry_rheology {
     double nu_min, nu_max;     /* power law bounds [m^2/s] */
     double nu_zero, nu_inf;    /* Carreau [m^2/s] */
     double time;               /* Carreau time constant [s] */
-    double nu_polymer;         /* Oldroyd-B [m^2/s] */
-    double relaxation;         /* Oldroyd-B lambda [s] */
+    double nu_polymer;         /* Oldroyd-B, Giesekus [m^2/s] */
+    double relaxation;         /* Oldroyd-B, Giesekus lambda [s] */
+    double mobility;           /* Giesekus alpha */
 } ry_rheology;
 
 /* Reads `<prefix>.rheology` (prefix e.g. "materials[0]"); absent: Newtonian. */
 ry_status ry_rheology_read(ry_case *c, const char *prefix, ry_rheology *r, ry_error *err);
 /* Whether the model makes the viscosity depend on the shear rate. */
 int ry_rheology_generalised(const ry_rheology *r);
-/* Kinematic viscosity at shear rate gd; nu_newtonian for the Newtonian and Oldroyd-B models
+/* Whether the model carries a polymer stress (Oldroyd-B, Giesekus). */
+int ry_rheology_viscoelastic(const ry_rheology *r);
+/* Kinematic viscosity at shear rate gd; nu_newtonian for the Newtonian and visco-elastic models
  * (the solvent). */
 double ry_rheology_nu(const ry_rheology *r, double nu_newtonian, double gd);
 /* Largest viscosity the model can take (for time-step limits): nu_newtonian, viscosity_max, or
  * the larger of Carreau's two plateaus. */
 double ry_rheology_nu_max(const ry_rheology *r, double nu_newtonian);
+/* Steady simple shear at rate gd: the shear stress over density and rate [m^2/s], solvent and
+ * polymer together. Generalised Newtonian: ry_rheology_nu; Oldroyd-B: nu_newtonian + nu_p;
+ * Giesekus (Bird, Armstrong & Hassager 1987, Dynamics of Polymeric Liquids, vol. 1):
+ * nu_newtonian + nu_p (1 - f)^2 / (1 + (1 - 2 alpha) f), f = (1 - chi) / (1 + (1 - 2 alpha) chi),
+ * chi^2 = (sqrt(1 + 16 alpha (1 - alpha) Wi^2) - 1) / (8 alpha (1 - alpha) Wi^2), Wi = lambda gd.
+ */
+double ry_rheology_shear_nu(const ry_rheology *r, double nu_newtonian, double gd);
 
 /* The symmetric polymer stress is stored by components, ry_tau_count(dim) of them: in 2D
  * xx, yy, xy; in 3D xx, yy, zz, xy, xz, yz. Component k is tau_ab with (a, b) from
@@ -49,12 +63,16 @@ double ry_rheology_nu_max(const ry_rheology *r, double nu_newtonian);
 int ry_tau_count(int dim);
 void ry_tau_index(int dim, int k, int *a, int *b);
 const char *ry_tau_name(int dim, int k);
-/* One step of the Oldroyd-B equation at a particle, tau (ry_tau_count components) in place:
- * tau' = (tau + dt (L tau + tau L^T + 2 eta_p D / lambda)) / (1 + dt / lambda), with L the
- * velocity gradient (3 x 3 row-major, L_ab = du_a/dx_b), D its symmetric part and eta_p the
- * polymer's dynamic viscosity: the upper-convected terms explicit and the relaxation implicit,
- * so that the update is stable for any dt against lambda. */
-void ry_oldroyd_b_step(int dim, const double L[9], double eta_p, double lambda, double dt,
-                       double *tau);
+/* One step of a visco-elastic model's stress equation at a particle of density rho, tau
+ * (ry_tau_count components) in place:
+ * tau' = (tau + dt (L tau + tau L^T - (alpha / eta_p) tau . tau + 2 eta_p D / lambda))
+ *        / (1 + dt / lambda),
+ * with L the velocity gradient (3 x 3 row-major, L_ab = du_a/dx_b), D its symmetric part,
+ * eta_p = rho nu_p the polymer's dynamic viscosity and alpha 0 for Oldroyd-B: the
+ * upper-convected and quadratic terms explicit and the relaxation implicit, so that the update
+ * is stable for any dt against lambda. Where the quadratic term's rate alpha |tau| / eta_p
+ * exceeds 1/(4 dt), the step is taken in as many equal parts as keep it below. */
+void ry_polymer_step(int dim, const ry_rheology *r, const double L[9], double rho, double dt,
+                     double *tau);
 
 #endif

@@ -1,6 +1,7 @@
 /* ryushi validate rheology: non-Newtonian MPS, WCSPH and IISPH against analytic channel flows
- * (docs/rheology.md): steady power-law and Carreau Poiseuille profiles, and the start-up of
- * Poiseuille flow of an Oldroyd-B fluid, at 20 and 40 particles across (--quick: 20). Tables on
+ * (docs/rheology.md): steady power-law, Carreau and Giesekus Poiseuille profiles, and the
+ * start-up of Poiseuille flow of an Oldroyd-B fluid, at 20 and 40 particles across (--quick:
+ * 20). Tables on
  * stdout and in rheology.md, plots in rheology.png. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -44,12 +45,15 @@ static ry_status run_at(const char *root, const char *out, const scheme_def *sd,
 typedef struct steady_case {
     const char *name, *file; /* file: the case's name after the scheme's prefix */
     double g;
+    double end; /* > 0: the end time for every scheme (a visco-elastic fluid settles in lambdas) */
 } steady_case;
 
-static double steady_ref(const steady_case *sc, const ry_rheology *r, double s) {
+/* The steady profile of material m (nu: its solvent's viscosity). */
+static double steady_ref(const steady_case *sc, const ry_material *m, double s) {
+    const ry_rheology *r = &m->rheo;
     if (r->model == RY_RHEO_POWER_LAW && r->nu_min == 0)
         return ry_power_law_poiseuille(sc->g, r->consistency, r->index, 0.5 * CH, s);
-    return ry_gnf_poiseuille(r, sc->g, 0.5 * CH, s);
+    return ry_viscometric_poiseuille(r, m->viscosity, sc->g, 0.5 * CH, s);
 }
 
 /* A steady channel flow at one resolution: RMS and centreline errors, a row of md, and the
@@ -61,12 +65,13 @@ static void steady_run(const char *root, const char *out, const scheme_def *sd,
     ry_table s;
     ry_sim sim;
     ry_run_stats stats;
-    if (run_at(root, out, sd, sc->file, sd->steady_end, across, &s, &sim, &stats, &err) != RY_OK) {
+    const double end = sc->end > 0 ? sc->end : sd->steady_end;
+    if (run_at(root, out, sd, sc->file, end, across, &s, &sim, &stats, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", err.msg);
         ++*failures;
         return;
     }
-    const ry_rheology *r = &sim.mat[0].rheo;
+    const ry_material *r = &sim.mat[0];
     double y[MAXROWS], u[MAXROWS], ua[MAXROWS];
     const double l0 = CH / across;
     const size_t rows = ry_row_velocity(&sim, 0.0, l0, y, u, MAXROWS);
@@ -186,15 +191,19 @@ int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *
     ry_atomic_file af = {0};
     FILE *md = ry_atomic_open(&af, mdp, &err) == RY_OK ? af.fp : NULL;
     ry_plot *plot = NULL;
-    if (ry_plot_new(&plot, 1, 3, 1800, 560, &err) != RY_OK) plot = NULL;
+    if (ry_plot_new(&plot, 2, 2, 1400, 1000, &err) != RY_OK) plot = NULL;
     if (plot) {
         ry_plot_panel(plot, 0, "Power law, n = 0.5", "y (mm)", "u (mm/s)", &err);
         ry_plot_panel(plot, 1, "Carreau, n = 0.4", "y (mm)", "u (mm/s)", &err);
-        ry_plot_panel(plot, 2, "Oldroyd-B start-up, E = 1, beta = 0.1", "t (ms)",
+        ry_plot_panel(plot, 2, "Giesekus, alpha = 0.3, Wi = 1.9 at the wall", "y (mm)", "u (mm/s)",
+                      &err);
+        ry_plot_panel(plot, 3, "Oldroyd-B start-up, E = 1, beta = 0.1", "t (ms)",
                       "centreline u (mm/s)", &err);
     }
-    const steady_case sc[2] = {{"power law", "power_law_poiseuille", 6.9},
-                               {"Carreau", "carreau_poiseuille", 40.0}};
+    enum { NSTEADY = 3 };
+    const steady_case sc[NSTEADY] = {{"power law", "power_law_poiseuille", 6.9, 0},
+                                     {"Carreau", "carreau_poiseuille", 40.0, 0},
+                                     {"Giesekus", "giesekus_poiseuille", 400.0, 0.04}};
     /* The viscosity of WCSPH and IISPH is explicit (dt <= 0.125 and 0.045 h^2 / nu); their
      * steady runs stop at 20 and 15 ms, where the centreline velocity has settled to 0.2 %. */
     const scheme_def sd[3] = {{"MPS", "mps", 0}, {"WCSPH", "sph", 0.02}, {"IISPH", "iisph", 0.015}};
@@ -208,7 +217,7 @@ int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *
     const int mk[NSCHEME][2] = {{RY_PLOT_MARKER_CIRCLE, RY_PLOT_MARKER_SQUARE},
                                 {RY_PLOT_MARKER_TRIANGLE, RY_PLOT_MARKER_DIAMOND},
                                 {RY_PLOT_MARKER_CROSS, RY_PLOT_MARKER_PLUS}};
-    for (int c = 0; c < 2; ++c)
+    for (int c = 0; c < NSTEADY; ++c)
         for (int m = 0; m < NSCHEME; ++m)
             for (int k = 0; k < nres; ++k)
                 steady_run(root, out, &sd[m], &sc[c], res[k], md, plot, c, mk[m][k],
@@ -218,7 +227,7 @@ int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *
                     "| largest / peak | steps |\n|---|---|---|---|---|---|---|---|\n");
     for (int m = 0; m < NSCHEME; ++m)
         for (int k = 0; k < nres; ++k)
-            startup_run(root, out, &sd[m], res[k], md, plot, 2, mk[m][k],
+            startup_run(root, out, &sd[m], res[k], md, plot, 3, mk[m][k],
                         m == NSCHEME - 1 && k == nres - 1, failures);
     if (md && ry_atomic_commit(&af, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", err.msg);
@@ -229,6 +238,7 @@ int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *
     if (plot) {
         ry_plot_legend(plot, 0, RY_PLOT_LEGEND_SE, &err);
         ry_plot_legend(plot, 1, RY_PLOT_LEGEND_SE, &err);
+        ry_plot_legend(plot, 2, RY_PLOT_LEGEND_SE, &err);
         if (ry_plot_write_png(plot, png, &err) != RY_OK) {
             fprintf(stderr, "ryushi: validate: %s\n", err.msg);
             ++*failures;

@@ -5,7 +5,8 @@
 
 #include "ryushi/rheology.h"
 
-const char *const ry_rheology_names[] = {"newtonian", "power_law", "carreau", "oldroyd_b", NULL};
+const char *const ry_rheology_names[] = {"newtonian", "power_law", "carreau",
+                                         "oldroyd_b", "giesekus",  NULL};
 
 static ry_status key_double(ry_case *c, const char *prefix, const char *key, const double *def,
                             double lo, double hi, double *out, ry_error *err) {
@@ -40,15 +41,24 @@ ry_status ry_rheology_read(ry_case *c, const char *prefix, ry_rheology *r, ry_er
         RY_TRY(key_double(c, prefix, "index", NULL, 0.05, 1.0, &r->index, err));
         break;
     case RY_RHEO_OLDROYD_B:
+    case RY_RHEO_GIESEKUS:
         RY_TRY(
             key_double(c, prefix, "polymer_viscosity", NULL, 0.0, INFINITY, &r->nu_polymer, err));
         RY_TRY(
             key_double(c, prefix, "relaxation_time", NULL, 1e-300, INFINITY, &r->relaxation, err));
+        /* Above 1/2 the steady shear stress falls with the rate (an unstable constitutive
+         * branch). */
+        if (r->model == RY_RHEO_GIESEKUS)
+            RY_TRY(key_double(c, prefix, "mobility", NULL, 0.0, 0.5, &r->mobility, err));
         break;
     default:
         break;
     }
     return RY_OK;
+}
+
+int ry_rheology_viscoelastic(const ry_rheology *r) {
+    return r->model == RY_RHEO_OLDROYD_B || r->model == RY_RHEO_GIESEKUS;
 }
 
 int ry_rheology_generalised(const ry_rheology *r) {
@@ -85,6 +95,16 @@ double ry_rheology_nu_max(const ry_rheology *r, double nu_newtonian) {
     }
 }
 
+double ry_rheology_shear_nu(const ry_rheology *r, double nu_newtonian, double gd) {
+    if (r->model == RY_RHEO_OLDROYD_B) return nu_newtonian + r->nu_polymer;
+    if (r->model != RY_RHEO_GIESEKUS) return ry_rheology_nu(r, nu_newtonian, gd);
+    const double a = r->mobility, wi = r->relaxation * gd, q = 8.0 * a * (1.0 - a) * wi * wi;
+    /* chi^2 = (sqrt(1 + 2q) - 1) / q, written without the cancellation at small q */
+    const double chi = q > 0 ? sqrt(2.0 / (sqrt(1.0 + 2.0 * q) + 1.0)) : 1.0;
+    const double f = (1.0 - chi) / (1.0 + (1.0 - 2.0 * a) * chi);
+    return nu_newtonian + r->nu_polymer * (1.0 - f) * (1.0 - f) / (1.0 + (1.0 - 2.0 * a) * f);
+}
+
 /* The symmetric polymer stress by components: in 2D xx, yy, xy; in 3D xx, yy, zz, xy, xz, yz. */
 static const int tau_a[6] = {0, 1, 2, 0, 0, 1}, tau_b[6] = {0, 1, 2, 1, 2, 2};
 
@@ -104,21 +124,45 @@ const char *ry_tau_name(int dim, int k) {
     return names[dim == 2 && k == 2 ? 3 : k];
 }
 
-void ry_oldroyd_b_step(int dim, const double L[9], double eta_p, double lambda, double dt,
-                       double *tau) {
+/* One explicit step of the stress equation (ry_polymer_step) with mobility a (0: Oldroyd-B). */
+static void polymer_substep(int dim, const double L[9], double eta_p, double lambda, double a,
+                            double dt, double *tau) {
     const int nt = ry_tau_count(dim);
     double t[3][3] = {{0}};
     for (int k = 0; k < nt; ++k) {
-        int a, b;
-        ry_tau_index(dim, k, &a, &b);
-        t[a][b] = t[b][a] = tau[k];
+        int p, q;
+        ry_tau_index(dim, k, &p, &q);
+        t[p][q] = t[q][p] = tau[k];
     }
     for (int k = 0; k < nt; ++k) {
-        int a, b;
-        ry_tau_index(dim, k, &a, &b);
-        double up = 0; /* (L tau + tau L^T)_ab */
-        for (int c = 0; c < dim; ++c) up += L[3 * a + c] * t[c][b] + t[a][c] * L[3 * b + c];
-        const double dab = 0.5 * (L[3 * a + b] + L[3 * b + a]);
-        tau[k] = (t[a][b] + dt * (up + 2.0 * eta_p * dab / lambda)) / (1.0 + dt / lambda);
+        int p, q;
+        ry_tau_index(dim, k, &p, &q);
+        double up = 0, tt = 0; /* (L tau + tau L^T)_pq and (tau . tau)_pq */
+        for (int c = 0; c < dim; ++c) {
+            up += L[3 * p + c] * t[c][q] + t[p][c] * L[3 * q + c];
+            tt += t[p][c] * t[c][q];
+        }
+        if (a > 0) up -= a / eta_p * tt;
+        const double dpq = 0.5 * (L[3 * p + q] + L[3 * q + p]);
+        tau[k] = (t[p][q] + dt * (up + 2.0 * eta_p * dpq / lambda)) / (1.0 + dt / lambda);
     }
+}
+
+void ry_polymer_step(int dim, const ry_rheology *r, const double L[9], double rho, double dt,
+                     double *tau) {
+    const double eta_p = rho * r->nu_polymer;
+    const double a = r->model == RY_RHEO_GIESEKUS && eta_p > 0 ? r->mobility : 0.0;
+    int parts = 1;
+    if (a > 0) {
+        double n2 = 0; /* |tau|^2, the off-diagonal components twice */
+        for (int k = 0; k < ry_tau_count(dim); ++k) {
+            int p, q;
+            ry_tau_index(dim, k, &p, &q);
+            n2 += (p == q ? 1.0 : 2.0) * tau[k] * tau[k];
+        }
+        const double x = 4.0 * dt * a * sqrt(n2) / eta_p;
+        parts = x > 1 ? (int)fmin(ceil(x), 1000.0) : 1;
+    }
+    for (int s = 0; s < parts; ++s)
+        polymer_substep(dim, L, eta_p, r->relaxation, a, dt / parts, tau);
 }

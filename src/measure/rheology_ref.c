@@ -12,14 +12,14 @@ double ry_power_law_poiseuille(double g, double k, double n, double b, double s)
     return n / (n + 1.0) * pow(g / k, 1.0 / n) * (pow(b, e) - pow(fabs(s), e));
 }
 
-/* The shear rate at which the stress nu(gd) gd (per unit density) equals tau. */
-static double gnf_rate(const ry_rheology *r, double tau) {
+/* The shear rate at which the steady shear stress (per unit density) equals tau. */
+static double shear_rate(const ry_rheology *r, double nu, double tau) {
     if (tau <= 0) return 0;
     double lo = 0, hi = 1;
-    while (ry_rheology_nu(r, 0, hi) * hi < tau && hi < 1e30) hi *= 2;
+    while (ry_rheology_shear_nu(r, nu, hi) * hi < tau && hi < 1e30) hi *= 2;
     for (int it = 0; it < 200; ++it) {
         const double mid = 0.5 * (lo + hi);
-        if (ry_rheology_nu(r, 0, mid) * mid < tau)
+        if (ry_rheology_shear_nu(r, nu, mid) * mid < tau)
             lo = mid;
         else
             hi = mid;
@@ -27,7 +27,7 @@ static double gnf_rate(const ry_rheology *r, double tau) {
     return 0.5 * (lo + hi);
 }
 
-double ry_gnf_poiseuille(const ry_rheology *r, double g, double b, double s) {
+double ry_viscometric_poiseuille(const ry_rheology *r, double nu, double g, double b, double s) {
     s = fabs(s);
     if (s >= b) return 0;
     const int m = 2000; /* even */
@@ -35,9 +35,13 @@ double ry_gnf_poiseuille(const ry_rheology *r, double g, double b, double s) {
     double sum = 0;
     for (int q = 0; q <= m; ++q) {
         const double wq = q == 0 || q == m ? 1 : q % 2 ? 4 : 2;
-        sum += wq * gnf_rate(r, g * (s + q * h));
+        sum += wq * shear_rate(r, nu, g * (s + q * h));
     }
     return sum * h / 3.0;
+}
+
+double ry_gnf_poiseuille(const ry_rheology *r, double g, double b, double s) {
+    return ry_viscometric_poiseuille(r, 0.0, g, b, s);
 }
 
 double ry_oldroyd_b_startup(double g, double H, double nu_s, double nu_p, double lambda, double y,

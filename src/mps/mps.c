@@ -58,10 +58,10 @@ typedef struct mps {
     int surf_head;             /* surface particles hold the head of half a spacing */
     int f_nd, f_surf, f_vs[3]; /* fields */
     int rheo_gnf;              /* some material's viscosity follows the shear rate */
-    int rheo_ob;               /* some material is Oldroyd-B */
+    int rheo_ob;               /* some material is visco-elastic */
     int f_nu, f_gd;            /* fields with rheology: viscosity [m^2/s], shear rate [1/s] */
-    int f_tau[6];              /* Oldroyd-B polymer stress [Pa], components as ry_tau_index */
-    double *vgrad;             /* velocity gradient, dim x dim per particle (Oldroyd-B) */
+    int f_tau[6];              /* polymer stress [Pa], components as ry_tau_index */
+    double *vgrad;             /* velocity gradient, dim x dim per particle (visco-elastic) */
     int wall_mode;             /* walls in the viscous terms: own velocity, mirrored, slip */
     double *wd;                /* with it: distance of each particle to the wall surface */
     ry_csr A;
@@ -507,7 +507,7 @@ static ry_status rheology_init(ry_sim *sim, mps *M, ry_error *err) {
     for (int k = 0; k < 6; ++k) M->f_tau[k] = -1;
     for (int m = 0; m < sim->nmat; ++m) {
         M->rheo_gnf |= ry_rheology_generalised(&sim->mat[m].rheo);
-        M->rheo_ob |= sim->mat[m].rheo.model == RY_RHEO_OLDROYD_B;
+        M->rheo_ob |= ry_rheology_viscoelastic(&sim->mat[m].rheo);
     }
     if (!M->rheo_gnf && !M->rheo_ob) return RY_OK;
     ry_particles *ps = &sim->ps;
@@ -560,10 +560,9 @@ static double tau_value(const ry_sim *sim, const mps *M, size_t i, size_t j, int
 
 /* At x^n: the velocity gradient L (L[a][b] = du_a/dx_b, over fluid and wall neighbours, walls
  * with the velocity the viscous terms give them, wall_beta), the shear rate sqrt(2 D:D) and the
- * viscosity it gives; with Oldroyd-B the acceleration div(tau)/rho (tau's gradient over the fluid
- * neighbours) and the stress at t + dt, tau' = (tau + dt (L tau + tau L^T + 2 rho nu_p D / lambda))
- * / (1 + dt / lambda): the upper-convected terms explicit, the relaxation implicit (stable for any
- * dt). */
+ * viscosity it gives; with a visco-elastic model the acceleration div(tau)/rho (tau's gradient
+ * over the fluid neighbours) and the stress at t + dt by ry_polymer_step (the upper-convected and
+ * Giesekus terms explicit, the relaxation implicit). */
 static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim, nt = ry_tau_count(dim);
@@ -613,11 +612,10 @@ static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         const ry_material *mat = &sim->mat[ps->material[i]];
-        if (ps->kind[i] != RY_KIND_FLUID || mat->rheo.model != RY_RHEO_OLDROYD_B) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || !ry_rheology_viscoelastic(&mat->rheo)) continue;
         double t[6];
         for (int k = 0; k < nt; ++k) t[k] = ps->f[M->f_tau[k]][i];
-        ry_oldroyd_b_step(dim, &M->vgrad[9 * i], mat->density * mat->rheo.nu_polymer,
-                          mat->rheo.relaxation, dt, t);
+        ry_polymer_step(dim, &mat->rheo, &M->vgrad[9 * i], mat->density, dt, t);
         for (int k = 0; k < nt; ++k) ps->f[M->f_tau[k]][i] = t[k];
     }
     for (int k = 0; sim->par && k < nt; ++k) sim->par->sync(sim, ps->f[M->f_tau[k]], 1);
@@ -1035,12 +1033,12 @@ static ry_status mps_dt(ry_sim *sim, void *state, double *dt, ry_error *err) {
         for (int d = 0; d < sim->dim; ++d) s += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
         v2 = fmax(v2, s);
     }
-    double elastic = INFINITY; /* Oldroyd-B: shear waves at sqrt(nu_p / lambda) */
+    double elastic = INFINITY; /* visco-elastic: shear waves at sqrt(nu_p / lambda) */
     for (int m = 0; m < sim->nmat; ++m) {
         const ry_rheology *r = &sim->mat[m].rheo;
         rho_min = fmin(rho_min, sim->mat[m].density);
         nu_max = fmax(nu_max, ry_rheology_nu_max(r, sim->mat[m].viscosity));
-        if (r->model == RY_RHEO_OLDROYD_B && r->nu_polymer > 0)
+        if (ry_rheology_viscoelastic(r) && r->nu_polymer > 0)
             elastic = fmin(elastic, sim->cfl * l0 * sqrt(r->relaxation / r->nu_polymer));
     }
     double g = 0;

@@ -14,7 +14,7 @@ ry_status ry_sph_rheo_init(ry_sph_rheo *r, ry_sim *sim, ry_error *err) {
     for (int m = 0; m < sim->nmat; ++m) {
         const int model = sim->mat[m].rheo.model;
         r->on |= model != RY_RHEO_NEWTONIAN;
-        r->ob |= model == RY_RHEO_OLDROYD_B;
+        r->ob |= ry_rheology_viscoelastic(&sim->mat[m].rheo);
     }
     if (!r->on) return RY_OK;
     ry_particles *ps = &sim->ps;
@@ -131,11 +131,10 @@ void ry_sph_rheo_advance(ry_sph_rheo *r, ry_sim *sim, const int mobile[RY_KIND_C
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         const ry_material *mat = &sim->mat[ps->material[i]];
-        if (!mobile[ps->kind[i]] || mat->rheo.model != RY_RHEO_OLDROYD_B) continue;
+        if (!mobile[ps->kind[i]] || !ry_rheology_viscoelastic(&mat->rheo)) continue;
         double t[6];
         for (int k = 0; k < nt; ++k) t[k] = ps->f[r->f_tau[k]][i];
-        ry_oldroyd_b_step(dim, r->L + 9 * i, mat->density * mat->rheo.nu_polymer,
-                          mat->rheo.relaxation, dt, t);
+        ry_polymer_step(dim, &mat->rheo, r->L + 9 * i, mat->density, dt, t);
         for (int k = 0; k < nt; ++k) ps->f[r->f_tau[k]][i] = t[k];
     }
     for (int k = 0; sim->par && k < nt; ++k) sim->par->sync(sim, ps->f[r->f_tau[k]], 1);
@@ -152,7 +151,7 @@ double ry_sph_rheo_dt(const ry_sph_rheo *r, const ry_sim *sim, const int mobile[
     double t = numax > 0 ? cvisc * h * h / numax : INFINITY;
     for (int m = 0; m < sim->nmat; ++m) {
         const ry_rheology *rh = &sim->mat[m].rheo;
-        if (rh->model == RY_RHEO_OLDROYD_B && rh->nu_polymer > 0)
+        if (ry_rheology_viscoelastic(rh) && rh->nu_polymer > 0)
             t = fmin(t, cfl * h * sqrt(rh->relaxation / rh->nu_polymer));
     }
     return t;

@@ -1,8 +1,8 @@
 /* Non-Newtonian materials in the SPH schemes (docs/rheology.md, "In the SPH schemes"): the
  * velocity gradient by the corrected kernel gradient, the viscosity of a generalised Newtonian
- * material (power law, Carreau) from its shear rate, and the polymer stress of an Oldroyd-B
- * material with its divergence. The scheme's viscous term reads the per-particle viscosity;
- * the stress divergence is an acceleration the scheme adds to its own. */
+ * material (power law, Carreau) from its shear rate, and the polymer stress of a visco-elastic
+ * material (Oldroyd-B, Giesekus) with its divergence. The scheme's viscous term reads the
+ * per-particle viscosity; the stress divergence is an acceleration the scheme adds to its own. */
 #ifndef RYUSHI_SPH_RHEOLOGY_H
 #define RYUSHI_SPH_RHEOLOGY_H
 
@@ -11,7 +11,7 @@
 
 typedef struct ry_sph_rheo {
     int on;       /* some material is not Newtonian */
-    int ob;       /* some material is Oldroyd-B */
+    int ob;       /* some material is visco-elastic (Oldroyd-B, Giesekus) */
     int f_nu;     /* kinematic viscosity per particle [m^2/s] (state: the time step reads it) */
     int f_gd;     /* shear rate sqrt(2 D:D) [1/s] */
     int f_tau[6]; /* polymer stress [Pa]: xx, yy, (zz,) xy, (xz, yz) */
@@ -26,7 +26,7 @@ ry_status ry_sph_rheo_init(ry_sph_rheo *r, ry_sim *sim, ry_error *err);
 void ry_sph_rheo_free(ry_sph_rheo *r);
 
 /* At the present state, for the particles with mobile[kind] set: L, the shear rate and the
- * viscosity; with Oldroyd-B also div(tau)/rho into r->acc (other particles: 0). vol holds
+ * viscosity; with a polymer stress also div(tau)/rho into r->acc (other particles: 0). vol holds
  * every particle's volume. The velocity gradient sees the fixed particles (walls, inlets) with
  * the velocities vwall (the ghost velocity of a no-slip wall); vwall NULL leaves them out
  * (free slip). The stress divergence is taken over the mobile neighbours. pc is the pair cache

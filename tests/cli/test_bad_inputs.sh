@@ -49,6 +49,7 @@ case_ rheology_with_viscosity 2 ":6: key 'materials[0].viscosity': not used with
 case_ rheology_solid 2 ":8: key 'materials[0].rheology.model': oldroyd_b is available with schemes mps, wcsph and iisph (this case uses solid)"
 case_ rheology_iisph_projected 2 ": key 'scheme.viscous_form': material 'gel' (power_law) needs morris"
 case_ rheology_wcsph_inviscid 2 ":12: key 'scheme.laminar_viscosity': a non-Newtonian material needs it true"
+case_ rheology_giesekus_mobility 2 ":11: key 'materials[0].rheology.mobility': expected a number in [0, 0.5], got '0.7'"
 case_ gravity_length 2 ":7: key 'gravity': expected a sequence of 2 numbers, got 3 elements"
 case_ unknown_material 2 ":4: key 'bodies[0].material': expected one of water; got 'oil'"
 case_ materials_missing_density 2 ":3: key 'materials[0].density': required key is missing"
