@@ -655,9 +655,32 @@ static ry_status surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+    /* The reference R_i the force counts pressures from: P_i at the surface, and beneath it the
+     * mean Laplace jump of all the surface particles (for one drop: its jump). With 0 there,
+     * a particle within a kernel's reach of the surface, short of neighbours on the empty side,
+     * was pushed out by the liquid's pressure and the solve raised the pressure beneath the
+     * surface to hold it: the drop at rest read 16 % above sigma / R. A reference that varies
+     * along the surface (the kernel-weighted mean of the surface neighbours' P_j) made the
+     * oscillating square unstable. A constant R adds no net force to a particle with a full
+     * neighbourhood on a lattice, and between two particles beneath the surface its pair terms
+     * are equal and opposite. */
+    double *R = P + n; /* free after ry_st_laplace_pressure */
+    double psum = 0, pcount = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (s->stw.tag[i] && !ry_sim_is_halo(sim, i)) {
+            psum += P[i];
+            pcount += 1;
+        }
+    if (sim->par) {
+        psum = sim->par->sum(sim, psum);
+        pcount = sim->par->sum(sim, pcount);
+    }
+    const double pavg = pcount > 0 ? psum / pcount : 0.0;
+    for (size_t i = 0; i < n; ++i)
+        R[i] = s->stw.tag[i] ? P[i] : ps->kind[i] == RY_KIND_FLUID ? pavg : 0.0;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        if (P[i] == 0.0) continue;
+        if (R[i] == 0.0) continue;
         double a[3] = {0, 0, 0};
         const double di2 = 1.0 / (delta[i] * delta[i]);
         for (size_t q = off[i]; q < off[i + 1]; ++q) {
@@ -666,7 +689,7 @@ static ry_status surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
             const double f = di2 + (MOBILE[ps->kind[j]] ? 1.0 / (delta[j] * delta[j]) : di2);
             for (int d = 0; d < dim; ++d) a[d] += f * Q[RY_PW_GX + d];
         }
-        for (int d = 0; d < dim; ++d) s->acc[3 * i + d] += P[i] * a[d] / m[i];
+        for (int d = 0; d < dim; ++d) s->acc[3 * i + d] += R[i] * a[d] / m[i];
     }
     return RY_OK;
 }

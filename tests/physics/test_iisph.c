@@ -145,18 +145,19 @@ static void test_square_drop(void **state) {
 }
 
 /* Free-surface tension (CSF in pressure form): the circular drop of cases/iisph_drop_rest_2d.yaml
- * (R = 2 mm, 20 spacings, sigma = 0.0728 N/m, 10 ms) keeps a pressure inside within 20 % of the
- * Laplace jump sigma / R over its second half (measured +16.1 %; MPS meets 5 %: docs/iisph.md)
- * and its spurious speeds below 0.05 m/s (measured 0.029). */
+ * (R = 2 mm, 20 spacings, sigma = 0.0728 N/m, 10 ms) keeps a pressure inside within 6 % of the
+ * Laplace jump sigma / R over its second half (measured +3.2 %; +16.1 % before the liquid
+ * beneath the surface counted its pressures from the drop's mean jump: docs/iisph.md) and its
+ * spurious speeds below 0.05 m/s (measured 0.016). */
 static void test_free_drop_rest(void **state) {
     (void)state;
     const char *sets[] = {"time.end=0.01"};
-    free_drop_at_rest("cases/iisph_drop_rest_2d.yaml", "free_drop", 1, sets, 0.005, 0.20, 0.05);
+    free_drop_at_rest("cases/iisph_drop_rest_2d.yaml", "free_drop", 1, sets, 0.005, 0.06, 0.05);
 }
 
 /* The oscillating square of cases/iisph_droplet_square.yaml (40 x 40, CSF in pressure form, 15
  * ms): period within 10 % of Lamb's mode 4, T = 2 pi / sqrt(60 sigma / (rho R^3)),
- * R = a / sqrt(pi) (measured +0.1 %, half period -5.8 %: docs/iisph.md). */
+ * R = a / sqrt(pi) (measured +4.0 %, half period +9.9 %: docs/iisph.md). */
 static void test_free_square(void **state) {
     (void)state;
     free_square_period("cases/iisph_droplet_square.yaml", "free_square", 0.10);
