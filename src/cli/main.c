@@ -372,9 +372,31 @@ static int cmd_info(int argc, char **argv) {
                sim.box.hi[1]);
         if (sim.dim > 2) printf(" x [%g, %g]", sim.box.lo[2], sim.box.hi[2]);
         printf("\nmaterials      ");
-        for (int m = 0; m < sim.nmat; ++m)
-            printf(" %s (rho0 %g kg/m^3, nu %g m^2/s)", sim.mat[m].name, sim.mat[m].density,
-                   sim.mat[m].viscosity);
+        for (int m = 0; m < sim.nmat; ++m) {
+            const ry_material *mt = &sim.mat[m];
+            const ry_rheology *r = &mt->rheo;
+            printf(" %s (rho0 %g kg/m^3, ", mt->name, mt->density);
+            switch (r->model) {
+            case RY_RHEO_POWER_LAW:
+                printf("power law k %g m^2 s^(n-2), n %g, nu in [%g, %g] m^2/s)", r->consistency,
+                       r->index, r->nu_min, r->nu_max);
+                break;
+            case RY_RHEO_CARREAU:
+                printf("Carreau nu_0 %g, nu_inf %g m^2/s, t %g s, n %g)", r->nu_zero, r->nu_inf,
+                       r->time, r->index);
+                break;
+            case RY_RHEO_OLDROYD_B:
+            case RY_RHEO_GIESEKUS:
+                printf("%s: solvent nu %g, polymer nu %g m^2/s, lambda %g s",
+                       r->model == RY_RHEO_GIESEKUS ? "Giesekus" : "Oldroyd-B", mt->viscosity,
+                       r->nu_polymer, r->relaxation);
+                if (r->model == RY_RHEO_GIESEKUS) printf(", alpha %g", r->mobility);
+                printf(")");
+                break;
+            default:
+                printf("nu %g m^2/s)", mt->viscosity);
+            }
+        }
         /* Pairs within the support (the run's list, if the scheme keeps one, also holds the
          * skin). */
         size_t pairs = 0;

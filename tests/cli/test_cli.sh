@@ -46,6 +46,10 @@ ls "$T/run" | grep -q "tmp" && bad "temporary files left in the output" || ok
 "$RY" info "$T/run/case_resolved.yaml" | grep -q "particles *1340" && ok \
     || bad "case_resolved.yaml does not reproduce the case"
 "$RY" info "$SRC/cases/dam_break_seed.yaml" | grep -q "bytes/particle" && ok || bad "info lacks bytes/particle"
+# A non-Newtonian material is reported with its model and values.
+"$RY" info "$SRC/cases/mps_giesekus_poiseuille.yaml" \
+    | grep -q "Giesekus: solvent nu 0.0001, polymer nu 0.0009 m^2/s, lambda 0.005 s, alpha 0.3" \
+    && ok || bad "info does not report the Giesekus material"
 
 # SIGINT: a long run stops cleanly, writes its state and exits 130.
 "$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/int" --set spacing=0.0125 --set time.dt_max=1e-5 \
