@@ -116,18 +116,17 @@ double ry_rt_growth_rate(double rho1, double rho2, double h1, double h2, double 
 /* Channel flows of non-Newtonian fluids (docs/rheology.md): walls at y = 0 and y = H, a body
  * force g along x; s the distance from the centreline, b = H/2, every viscosity kinematic.
  * Steady power law (nu = k gamma_dot^(n-1)): u(s) = n/(n+1) (g/k)^(1/n) (b^(1+1/n) - s^(1+1/n)).
- * Steady generalised Newtonian (any ry_rheology): the shear rate gd(s) solves nu(gd) gd = g s
- * (bisection; nu(gd) gd increasing), u(s) = int_s^b gd ds' (Simpson, 2000 intervals).
- * Steady flow of any model with solvent viscosity nu (ry_viscometric_poiseuille): the same with
- * the steady shear viscosity ry_rheology_shear_nu, since a steady channel flow is a simple shear
- * at every s (for a visco-elastic fluid the polymer's normal stresses do not enter the balance
- * of x momentum).
+ * Steady flow of any model with solvent viscosity nu (ry_viscometric_poiseuille; nu is not read
+ * by the generalised Newtonian models): the shear rate gd(s) solves nu(gd) gd = g s with nu(gd)
+ * the steady shear viscosity ry_rheology_shear_nu (bisection; nu(gd) gd increasing), and
+ * u(s) = int_s^b gd ds' (Simpson, 2000 intervals). A steady channel flow is a simple shear at
+ * every s; for a visco-elastic fluid the polymer's normal stresses do not enter the balance of
+ * x momentum.
  * Oldroyd-B start-up from rest (Waters & King 1970): u = sum over odd k of u_k(t) sin(a_k y),
  * a_k = k pi / H, each mode with its polymer stress (tau_xy / rho = sum s_k a_k cos(a_k y))
  * the linear system du_k/dt = 4 g/(k pi) - a_k^2 (nu_s u_k + s_k),
  * lambda ds_k/dt = nu_p u_k - s_k, solved exactly from u_k = s_k = 0; `modes` odd modes. */
 double ry_power_law_poiseuille(double g, double k, double n, double b, double s);
-double ry_gnf_poiseuille(const ry_rheology *r, double g, double b, double s);
 double ry_viscometric_poiseuille(const ry_rheology *r, double nu, double g, double b, double s);
 double ry_oldroyd_b_startup(double g, double H, double nu_s, double nu_p, double lambda, double y,
                             double t, int modes);

@@ -1,8 +1,7 @@
 /* ryushi validate rheology: non-Newtonian MPS, WCSPH and IISPH against analytic channel flows
  * (docs/rheology.md): steady power-law, Carreau and Giesekus Poiseuille profiles, and the
  * start-up of Poiseuille flow of an Oldroyd-B fluid, at 20 and 40 particles across (--quick:
- * 20). Tables on
- * stdout and in rheology.md, plots in rheology.png. */
+ * 20). Tables on stdout and in rheology.md, plots in rheology.png. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -71,21 +70,21 @@ static void steady_run(const char *root, const char *out, const scheme_def *sd,
         ++*failures;
         return;
     }
-    const ry_material *r = &sim.mat[0];
+    const ry_material *mat = &sim.mat[0];
     double y[MAXROWS], u[MAXROWS], ua[MAXROWS];
     const double l0 = CH / across;
     const size_t rows = ry_row_velocity(&sim, 0.0, l0, y, u, MAXROWS);
-    const double uc = steady_ref(sc, r, 0.0);
+    const double uc = steady_ref(sc, mat, 0.0);
     double s2 = 0, umax = 0, worst = 0;
     for (size_t k = 0; k < rows; ++k) {
-        ua[k] = steady_ref(sc, r, y[k] - 0.5 * CH);
+        ua[k] = steady_ref(sc, mat, y[k] - 0.5 * CH);
         const double e = (u[k] - ua[k]) / uc;
         s2 += e * e;
         worst = fmax(worst, fabs(e));
         umax = fmax(umax, u[k]);
     }
     const double rms = rows ? sqrt(s2 / rows) : NAN;
-    const double centre = umax / steady_ref(sc, r, 0.5 * l0) - 1;
+    const double centre = umax / steady_ref(sc, mat, 0.5 * l0) - 1;
     const double pss = stats.wall_s > 0 ? (double)sim.ps.n * stats.steps / stats.wall_s : 0;
     printf("  %-5s %-10s %3d across: u_c %.3f mm/s, centreline %+.2f %%, RMS %.2f %%, largest "
            "%.2f %% (%ld steps, %.2e particle-steps/s)\n",

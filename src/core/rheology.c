@@ -96,9 +96,10 @@ double ry_rheology_nu_max(const ry_rheology *r, double nu_newtonian) {
 }
 
 double ry_rheology_shear_nu(const ry_rheology *r, double nu_newtonian, double gd) {
-    if (r->model == RY_RHEO_OLDROYD_B) return nu_newtonian + r->nu_polymer;
-    if (r->model != RY_RHEO_GIESEKUS) return ry_rheology_nu(r, nu_newtonian, gd);
-    const double a = r->mobility, wi = r->relaxation * gd, q = 8.0 * a * (1.0 - a) * wi * wi;
+    if (!ry_rheology_viscoelastic(r)) return ry_rheology_nu(r, nu_newtonian, gd);
+    /* Oldroyd-B is alpha = 0: q = 0, f = 0, the polymer's nu_p at every rate */
+    const double a = r->model == RY_RHEO_GIESEKUS ? r->mobility : 0.0;
+    const double wi = r->relaxation * gd, q = 8.0 * a * (1.0 - a) * wi * wi;
     /* chi^2 = (sqrt(1 + 2q) - 1) / q, written without the cancellation at small q */
     const double chi = q > 0 ? sqrt(2.0 / (sqrt(1.0 + 2.0 * q) + 1.0)) : 1.0;
     const double f = (1.0 - chi) / (1.0 + (1.0 - 2.0 * a) * chi);

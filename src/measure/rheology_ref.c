@@ -40,10 +40,6 @@ double ry_viscometric_poiseuille(const ry_rheology *r, double nu, double g, doub
     return sum * h / 3.0;
 }
 
-double ry_gnf_poiseuille(const ry_rheology *r, double g, double b, double s) {
-    return ry_viscometric_poiseuille(r, 0.0, g, b, s);
-}
-
 double ry_oldroyd_b_startup(double g, double H, double nu_s, double nu_p, double lambda, double y,
                             double t, int modes) {
     double u = 0;

@@ -45,12 +45,12 @@ static void test_models_and_references(void **state) {
     const double g = 2.0, nu = 1e-3, b = 0.5e-3, s = 0.2e-3, un = g * (b * b - s * s) / (2 * nu);
     assert_float_equal(ry_power_law_poiseuille(g, nu, 1.0, b, s), un, 1e-12 * un);
     ry_rheology newt = {.model = RY_RHEO_POWER_LAW, .consistency = nu, .index = 1.0, .nu_max = 1.0};
-    assert_float_equal(ry_gnf_poiseuille(&newt, g, b, s), un, 1e-6 * un);
+    assert_float_equal(ry_viscometric_poiseuille(&newt, 0.0, g, b, s), un, 1e-6 * un);
     /* Power law n = 0.5 by the general route. */
     pl.nu_min = 0;
     pl.nu_max = 1e30;
     const double upl = ry_power_law_poiseuille(g, 1e-3, 0.5, b, s);
-    assert_float_equal(ry_gnf_poiseuille(&pl, g, b, s), upl, 1e-5 * upl);
+    assert_float_equal(ry_viscometric_poiseuille(&pl, 0.0, g, b, s), upl, 1e-5 * upl);
     /* Oldroyd-B: long after the start the Newtonian profile of nu_s + nu_p; early on the
      * fluid accelerates freely (u = g t), and with nu_p = 0 the steady state is the solvent's. */
     const double u0 = g * 4 * b * b / (8 * (1e-4 + 9e-4));
@@ -128,7 +128,7 @@ static double power_law_ref(const void *ctx, double s) {
 }
 
 static double gnf_ref(const void *ctx, double s) {
-    return ry_gnf_poiseuille(ctx, 40.0, 0.5 * H, s);
+    return ry_viscometric_poiseuille(ctx, 0.0, 40.0, 0.5 * H, s);
 }
 
 /* A steady channel case at 20 across against ref: the row velocities within 3 % (RMS, of the
