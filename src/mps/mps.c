@@ -164,6 +164,9 @@ static ry_status interfacial(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
     M->colour.sigma = sab;
     M->colour.material = 1;
     M->colour.eps = 0.01;
+    long passes, one = 1;
+    RY_TRY(ry_case_int(c, "surface_tension.interfacial_smoothing", &one, 0, 20, &passes, err));
+    M->colour.smoothing = (int)passes;
     M->colour.rho_bar = 0.5 * (sim->mat[0].density + sim->mat[1].density);
     return M->colour_on ? ry_colour_init(&M->colour, sim, err) : RY_OK;
 }

@@ -139,6 +139,9 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
                  ry_case_where(c, "scheme.colour_material", where, sizeof where), name);
         s->colour.material = found;
         RY_TRY(ry_case_double(c, "scheme.normal_threshold", &eps, 0.0, 1.0, &s->colour.eps, err));
+        long passes, one = 1;
+        RY_TRY(ry_case_int(c, "scheme.curvature_smoothing", &one, 0, 20, &passes, err));
+        s->colour.smoothing = (int)passes;
     }
     if (s->colour_on) {
         const int a = s->colour.material, b = a == 0 && sim->nmat > 1 ? 1 : 0;

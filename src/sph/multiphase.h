@@ -8,6 +8,10 @@
  *  curvature    kappa_i = -div(n / |n|) = d sum_j V_j (nh_i - nh_j) . grad_i W_ij
  *                                         / sum_j V_j |x_ij| |grad_i W_ij|
  *               over the neighbours with a reliable normal, |n| > eps / h (Morris 2000)
+ *  average      kappa_i <- sum_j |n_j| kappa_j W_ij / delta_j / sum_j |n_j| W_ij / delta_j over
+ *               the particle and its neighbours with a reliable normal, `smoothing` passes: one
+ *               curvature for the particles of the interface's band, which cuts the parasitic
+ *               currents of a curvature that scatters from particle to particle
  *  force        F_i = (1 / delta_i) sigma kappa_i n_i                          (seed eq. 7)
  *               with Brackbill's density scaling: the force per volume sigma kappa n is
  *               weighted by 2 rho_i / (rho_a + rho_b) (rho_a, rho_b the two reference
@@ -25,6 +29,7 @@ typedef struct ry_colour {
     double sigma;    /* interfacial tension [N/m] */
     double eps;      /* normal threshold |n| h > eps */
     double rho_bar;  /* mean reference density of the two phases */
+    int smoothing;   /* passes of the |n|-weighted curvature average (0: none) */
     int f_colour;    /* particle field: smoothed colour c' */
     int f_curvature; /* particle field: curvature [1/m] */
     double *nrm;     /* 3 x n: normals */

@@ -50,6 +50,7 @@ case_ rheology_solid 2 ":8: key 'materials[0].rheology.model': oldroyd_b is avai
 case_ rheology_iisph_projected 2 ": key 'scheme.viscous_form': material 'gel' (power_law) needs morris"
 case_ rheology_wcsph_inviscid 2 ":12: key 'scheme.laminar_viscosity': a non-Newtonian material needs it true"
 case_ rheology_giesekus_mobility 2 ":11: key 'materials[0].rheology.mobility': expected a number in [0, 0.5], got '0.7'"
+case_ iisph_curvature_smoothing 2 ":11: key 'scheme.curvature_smoothing': expected an integer in [0, 20], got '30'"
 case_ gravity_length 2 ":7: key 'gravity': expected a sequence of 2 numbers, got 3 elements"
 case_ unknown_material 2 ":4: key 'bodies[0].material': expected one of water; got 'oil'"
 case_ materials_missing_density 2 ":3: key 'materials[0].density': required key is missing"
