@@ -124,23 +124,26 @@ static void test_stacked(void **state) {
 }
 
 /* Square drop relaxing to a circle (cases/square_drop.yaml, 16 particles across, sigma = 1 N/m,
- * solver tolerance 1e-6): at t = 0.4 s the pressure inside (r < R/2) minus outside (r > 1.5 R)
- * is sigma / R within 5 % (measured -0.1 %; +2.7 % with the curvature as read, before its
- * average over the interface: docs/iisph.md), R = 0.4/sqrt(pi). */
+ * solver tolerance 1e-6), to 0.8 s: the pressure inside (r < R/2) minus outside (r > 1.5 R) is
+ * sigma / R within 5 % (measured +1.6 % at 0.8 s, -0.1 % at 0.4 s), R = 0.4/sqrt(pi); and the
+ * drop comes to rest: from 0.6 s its largest speed stays below 0.03 m/s (measured 0.010). With
+ * the curvature as read, before its average over the interface (docs/iisph.md), the parasitic
+ * currents kept it at 0.092 m/s and the jump read +4.5 %. */
 static void test_square_drop(void **state) {
     (void)state;
-    const char *sets[] = {"time.end=0.4", "output.vtk=false"};
+    const char *sets[] = {"time.end=0.8", "output.vtk=false"};
     ry_sim sim;
     ry_run_stats stats;
     ry_table s;
     run_case("cases/square_drop.yaml", "drop", 2, sets, &s, &sim, &stats);
     const double R = 0.4 / sqrt(3.14159265358979323846), c[2] = {0.5, 0.5};
     const double dp = ry_pressure_jump(&sim, c, 0.5 * R, 1.5 * R);
-    printf("square drop: pressure jump %.3f Pa, sigma/R %.3f Pa (%+.2f %%), max speed %.4f m/s, "
-           "mean iterations %.1f\n",
-           dp, 1.0 / R, 100 * (dp * R - 1), ry_column_max_from(&s, "max_speed", 0.3),
-           ry_column_max(&s, "iisph_iterations_mean"));
+    const double vlate = ry_column_max_from(&s, "max_speed", 0.6);
+    printf("square drop: pressure jump %.3f Pa, sigma/R %.3f Pa (%+.2f %%), max speed from 0.6 s "
+           "%.4f m/s, mean iterations %.1f\n",
+           dp, 1.0 / R, 100 * (dp * R - 1), vlate, ry_column_max(&s, "iisph_iterations_mean"));
     assert_true(fabs(dp * R - 1) <= 0.05);
+    assert_true(vlate < 0.03);
     ry_sim_free(&sim);
     ry_table_free(&s);
 }
