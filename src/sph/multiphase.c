@@ -4,10 +4,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-static double vlen(const double *v) {
-    return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
-
 ry_status ry_colour_init(ry_colour *cf, ry_sim *sim, ry_error *err) {
     RY_TRY(
         ry_particles_add_field(&sim->ps, "colour", "1", -1, RY_FIELD_OUTPUT, &cf->f_colour, err));
@@ -36,7 +32,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
     const size_t n = ps->n;
     const int dim = sim->dim;
     if (cf->cap < n) {
-        double *v = realloc(cf->nrm, 4 * n * sizeof(double));
+        double *v = realloc(cf->nrm, 5 * n * sizeof(double));
         RY_CHECK(err, v != NULL, RY_ERR_NOMEM, "out of memory (colour field)");
         cf->nrm = v;
         cf->cap = n;
@@ -81,6 +77,12 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         for (int d = 0; d < 3; ++d) nrm[3 * i + d] = g[d];
     }
     if (sim->par) sim->par->sync(sim, nrm, 3);
+    double *ln = nrm + 3 * n, *ks = nrm + 4 * n; /* |n| per particle; the average's output */
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        const double *ni = nrm + 3 * i;
+        ln[i] = sqrt(ni[0] * ni[0] + ni[1] * ni[1] + ni[2] * ni[2]);
+    }
     /* Curvature and force. */
     const double sigma = cf->sigma;
 #pragma omp parallel for schedule(dynamic, 64)
@@ -88,14 +90,14 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         kap[i] = 0;
         if (!mobile[kind[i]]) continue;
         const double *ni = nrm + 3 * i;
-        const double li = vlen(ni);
+        const double li = ln[i];
         if (li <= thr) continue;
         double num = 0, den = 0;
         for (size_t q = off[i]; q < off[i + 1]; ++q) {
             const uint32_t j = nb[q];
             if (!mobile[kind[j]]) continue;
             const double *nj = nrm + 3 * j;
-            const double lj = vlen(nj);
+            const double lj = ln[j];
             if (lj <= thr) continue;
             const double *P = cv + q * RY_PAIR_STRIDE;
             double dot = 0, g2 = 0;
@@ -111,20 +113,19 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
     }
     /* The curvature averaged over the interface particles, weighted by |n| W: smoothing
      * passes. */
-    double *ks = nrm + 3 * n;
     for (int pass = 0; pass < cf->smoothing; ++pass) {
         if (sim->par) sim->par->sync(sim, kap, 1);
 #pragma omp parallel for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
             ks[i] = kap[i];
             if (!mobile[kind[i]]) continue;
-            const double li = vlen(nrm + 3 * i);
+            const double li = ln[i];
             if (li <= thr) continue;
             double num = w0 * li * kap[i] / delta[i], den = w0 * li / delta[i];
             for (size_t q = off[i]; q < off[i + 1]; ++q) {
                 const uint32_t j = nb[q];
                 if (!mobile[kind[j]]) continue;
-                const double lj = vlen(nrm + 3 * j);
+                const double lj = ln[j];
                 if (lj <= thr) continue;
                 const double wv = lj * cv[q * RY_PAIR_STRIDE + RY_PW_W] / delta[j];
                 num += wv * kap[j];

@@ -32,7 +32,7 @@ typedef struct ry_colour {
     int smoothing;   /* passes of the |n|-weighted curvature average (0: none) */
     int f_colour;    /* particle field: smoothed colour c' */
     int f_curvature; /* particle field: curvature [1/m] */
-    double *nrm;     /* 3 x n: normals */
+    double *nrm;     /* 5 x n: normals (3 x n), then |n| and the curvature average's work */
     size_t cap;
 } ry_colour;
 
