@@ -8,10 +8,12 @@
  *
  * Neighbour list: for each particle the distinct neighbouring cells (at most 3 per direction,
  * fewer where a periodic direction has under 3 cells) are scanned in increasing cell order;
- * the pairs closer than the radius (minimum image) are kept. Pass 1 counts, a prefix sum gives
- * the offsets, pass 2 fills and sorts each particle's list by index. Each particle's list
- * depends only on the input, so the result is the same for any number of threads. */
+ * the pairs closer than the radius (minimum image) are kept. One pass writes and sorts each
+ * particle's list by index into a buffer of its thread, a prefix sum gives the offsets, and the
+ * lists are copied into place. Each particle's list depends only on the input, so the result is
+ * the same for any number of threads. */
 #include <float.h>
+#include <omp.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -411,37 +413,64 @@ ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_bo
     const uint32_t *order = cl->order;
     const long long nn = (long long)n;
 
-    /* Pass 1: counts. Particles are visited in cell order: consecutive ones share their
-     * candidate cells, which stay in cache. */
-#pragma omp parallel for schedule(dynamic, 256)
-    for (long long p = 0; p < nn; ++p) {
-        size_t i = order[p];
-        off[i + 1] = cells_row_dim(cl, &g, x, r2max, i, NULL);
-    }
-
-    size_t total = ry_nb_prefix_sum(off, n, &nl->max_row);
-    const size_t maxcnt = nl->max_row;
-    RY_TRY(ry_nb_reserve_j(nl, total, err));
-    uint32_t *jj = nl->j;
-
-    /* Pass 2: each thread fills a scratch row (with room for the unconditional store past the
-     * last neighbour), then copies it into place. */
-    int failed = 0;
-#pragma omp parallel reduction(| : failed)
+    /* One pass. Each thread takes a contiguous run of particles in cell order (consecutive
+     * ones share their candidate cells, which stay in cache) and writes their rows, one after
+     * the other, into a buffer of its own; after the prefix sum of the counts it copies them
+     * into place. The distances are computed once (a count pass and a fill pass computed them
+     * twice), and the rows are the same. */
+    size_t total = 0;
+    int failed = 0; /* shared: set by any thread, read after the barriers */
+#pragma omp parallel
     {
-        uint32_t *row = malloc((maxcnt + 1) * sizeof *row);
-        if (!row) failed = 1;
-#pragma omp for schedule(dynamic, 256)
-        for (long long p = 0; p < nn; ++p) {
-            if (!row) continue;
-            size_t i = order[p];
-            size_t cnt = cells_row_dim(cl, &g, x, r2max, i, row);
-            memcpy(jj + off[i], row, cnt * sizeof *row);
+        const long long nt = omp_get_num_threads(), t = omp_get_thread_num();
+        const long long lo = nn * t / nt, hi = nn * (t + 1) / nt;
+        uint32_t *buf = NULL;
+        size_t len = 0, cap = 0;
+        int mine = 0;
+        for (long long p = lo; p < hi && !mine; ++p) {
+            const size_t i = order[p];
+            size_t cells[27], cand = 1;
+            const int nc = ry_cells_neighbours(cl, g.periodic, cl->cell_of[i], cells);
+            for (int q = 0; q < nc; ++q) cand += cl->start[cells[q] + 1] - cl->start[cells[q]];
+            if (len + cand > cap) {
+                const size_t c = 2 * (len + cand) + 1024;
+                uint32_t *b = realloc(buf, c * sizeof *b);
+                if (!b) {
+                    mine = 1;
+                    break;
+                }
+                buf = b;
+                cap = c;
+            }
+            const size_t cnt = cells_row_dim(cl, &g, x, r2max, i, buf + len);
+            off[i + 1] = cnt;
+            len += cnt;
         }
-        free(row);
+        if (mine) {
+#pragma omp atomic write
+            failed = 1;
+        }
+#pragma omp barrier
+#pragma omp single
+        {
+            if (!failed) {
+                total = ry_nb_prefix_sum(off, n, &nl->max_row);
+                ry_error e2;
+                if (ry_nb_reserve_j(nl, total, &e2) != RY_OK) failed = 1;
+            }
+        }
+        if (!failed && buf) {
+            size_t pos = 0;
+            for (long long p = lo; p < hi; ++p) {
+                const size_t i = order[p], cnt = off[i + 1] - off[i];
+                memcpy(nl->j + off[i], buf + pos, cnt * sizeof *buf);
+                pos += cnt;
+            }
+        }
+        free(buf);
     }
-    RY_CHECK(err, !failed, RY_ERR_NOMEM, "neighbour list: no memory for a row of %zu entries",
-             maxcnt + 1);
+    RY_CHECK(err, !failed, RY_ERR_NOMEM,
+             "neighbour list: no memory for the rows of %zu particles (%zu entries)", n, total);
     nl->n = n;
     return RY_OK;
 }
