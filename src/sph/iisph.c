@@ -652,10 +652,8 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
     const uint8_t *kind = ps->kind;
-    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+    const double *m = ps->f[RY_F_MASS], *delta = s->delta;
     const double dt2 = dt * dt, d0 = s->delta0;
     const grad_list *gl = &s->gl;
     double *p = ps->f[RY_F_P], *pnew = s->pnew;
@@ -670,12 +668,12 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
         if (!MOBILE[kind[i]]) continue;
         double dv = 0, dii[3] = {0, 0, 0};
         const double di2 = delta[i] * delta[i];
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            const uint32_t j = nb[q];
-            const double *P = cv + q * RY_PAIR_STRIDE;
+        for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
+            const uint32_t j = gl->j[e];
+            const double *G = gl->g + 3 * e;
             for (int d = 0; d < dim; ++d) {
-                dv += (v[d][i] - v[d][j]) * P[RY_PW_GX + d];
-                dii[d] += P[RY_PW_GX + d];
+                dv += (v[d][i] - v[d][j]) * G[d];
+                dii[d] += G[d];
             }
         }
         /* Only compression is corrected: an expanded particle (free surface, splash) asks for
@@ -692,13 +690,13 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
         const double *dii = s->dii + 3 * i;
         const double di2 = delta[i] * delta[i];
         double a = 0;
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            const uint32_t j = nb[q];
-            const double *P = cv + q * RY_PAIR_STRIDE;
+        for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
+            const uint32_t j = gl->j[e];
+            const double *G = gl->g + 3 * e;
             double g2 = 0, dg = 0;
             for (int d = 0; d < dim; ++d) {
-                dg += dii[d] * P[RY_PW_GX + d];
-                g2 += P[RY_PW_GX + d] * P[RY_PW_GX + d];
+                dg += dii[d] * G[d];
+                g2 += G[d] * G[d];
             }
             a += dg;
             /* - d_ji . grad_i W_ij, d_ji = -(dt^2 / m_j) grad_j W_ji / delta_i^2 */
@@ -918,21 +916,20 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     s->iters_total += it;
     s->solves += 1;
     /* Pressure acceleration with the final pressures; v = v* + dt a^p; x += dt v. */
-    const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
-    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta, *p = ps->f[RY_F_P];
+    const grad_list *gl = &s->gl;
+    const double *m = ps->f[RY_F_MASS], *delta = s->delta, *p = ps->f[RY_F_P];
     double vmax2 = 0, amax2 = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : vmax2, amax2)
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[ps->kind[i]]) continue;
         const double pi = p[i] / (delta[i] * delta[i]);
         double a[3] = {0, 0, 0};
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            const uint32_t j = nb[q];
+        for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
+            const uint32_t j = gl->j[e];
             const double pj =
                 p[j] / (MOBILE[ps->kind[j]] ? delta[j] * delta[j] : delta[i] * delta[i]);
-            const double *P = cv + q * RY_PAIR_STRIDE;
-            for (int d = 0; d < dim; ++d) a[d] -= (pi + pj) * P[RY_PW_GX + d];
+            const double *G = gl->g + 3 * e;
+            for (int d = 0; d < dim; ++d) a[d] -= (pi + pj) * G[d];
         }
         double a2 = 0, v2 = 0;
         for (int d = 0; d < dim; ++d) {
