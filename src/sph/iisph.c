@@ -40,10 +40,6 @@
 #include "sph/sph_pairs.h"
 #include "sph/sph_rheology.h"
 
-/* The walls' pressure extrapolation (wall_extrapolate) as lists built once per step: each wall or
- * inlet particle with a mobile neighbour (w, nw of them), those neighbours (j, from off[k] to
- * off[k + 1]), W_wf and rho_f g . x_wf. An iteration of the solve then reads 20 bytes per
- * entry instead of the pair cache's 64, and skips the walls beyond the fluid's reach. */
 /* Grows the array ptr to count elements; on failure leaves it as it is and clears ok. */
 #define RY_IISPH_GROW(ptr, count, ok)                                                              \
     do {                                                                                           \
@@ -54,6 +50,11 @@
             (ok) = 0;                                                                              \
     } while (0)
 
+/* The walls' pressure extrapolation (wall_extrapolate) as lists built once per step: each wall or
+ * inlet particle with a mobile neighbour within the kernel (w, nw of them), those neighbours (j,
+ * from off[k] to off[k + 1]), W_wf and rho_f g . x_wf. An iteration of the solve then reads 20
+ * bytes per entry instead of the pair cache's 64 per listed pair, and skips the walls beyond the
+ * fluid's reach (pairs beyond the kernel add exact zeros). */
 typedef struct wall_map {
     size_t nw, cap_n, cap_e;
     uint32_t *w, *j;
@@ -513,7 +514,8 @@ static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err)
     for (size_t i = 0; i < n; ++i) {
         size_t c = 0;
         if (kind[i] == RY_KIND_WALL || kind[i] == RY_KIND_INLET)
-            for (size_t q = off[i]; q < off[i + 1]; ++q) c += MOBILE[kind[nb[q]]] != 0;
+            for (size_t q = off[i]; q < off[i + 1]; ++q)
+                c += MOBILE[kind[nb[q]]] && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
         m->cnt[i] = c;
     }
     m->nw = 0;
@@ -544,8 +546,8 @@ static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err)
         size_t e = m->off[k];
         for (size_t q = off[i]; q < off[i + 1]; ++q) {
             const uint32_t j = nb[q];
-            if (!MOBILE[kind[j]]) continue;
             const double *P = cv + q * RY_PAIR_STRIDE;
+            if (!MOBILE[kind[j]] || P[RY_PW_W] == 0) continue;
             double gr = 0;
             for (int d = 0; d < dim; ++d) gr += sim->gravity[d] * P[RY_PW_DX + d];
             m->j[e] = j;
@@ -617,7 +619,7 @@ static void wall_extrapolate(const iisph *s, double *p) {
             sw += m->wt[e];
             sp += (p[m->j[e]] + m->h[e]) * m->wt[e];
         }
-        p[m->w[k]] = sw > 0 ? fmax(sp / sw, 0.0) : 0.0;
+        p[m->w[k]] = fmax(sp / sw, 0.0); /* sw > 0: every entry has W > 0 */
     }
 }
 
