@@ -189,6 +189,7 @@ struct ry_sim {
                            each cell), so that the particles of each cell are consecutive */
     int cells_only;     /* set by a scheme: it needs the cells only, not the list `nl` */
     long searches;      /* list builds so far */
+    long nl_edits;      /* lists brought up to date after in- and outflow (ry_sim_list_edit) */
     long nl_generation; /* list and cell builds in this process (restarts included), for
                            schemes that derive data from them; not checkpointed */
     long nl_reuses;     /* steps that reused the list */
@@ -276,6 +277,14 @@ void ry_sim_free(ry_sim *sim);
  * build; otherwise the list is reused. Pair loops must skip pairs beyond the radius. Schemes call
  * this at the start of each force evaluation. */
 ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err);
+/* After ry_open_update added nspawn particles at the end of the n_old there were (the list's
+ * count) and removed those flagged in remove (indices below n_old, or NULL), with the survivors
+ * compacted in order: the list becomes that of a search from the reference positions, with the
+ * new particles' positions as theirs, so that the next call of ry_sim_neighbors can reuse it
+ * (a search over every row otherwise follows each change of the count). Leaves the list to
+ * the next search in a distributed run, with the cells alone, or without a skin. */
+ry_status ry_sim_list_edit(ry_sim *sim, size_t n_old, size_t nspawn, const uint8_t *remove,
+                           ry_error *err);
 /* Whether a neighbour search has been made (a list, or the cells alone), so that a restored
  * state must rebuild it from the positions of that search. */
 static inline int ry_sim_searched(const ry_sim *sim) {

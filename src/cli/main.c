@@ -225,10 +225,11 @@ static int cmd_run(int argc, char **argv) {
         sim.scheme->report(sim.scheme_state, scheme_stats + 1, sizeof scheme_stats - 1);
     }
     printf("summary status=%s steps=%ld particles=%zu t=%.6g wall_s=%.3f "
-           "particle_steps_per_s=%.4g threads=%d%s outputs=%d output=%s\n",
+           "particle_steps_per_s=%.4g threads=%d%s searches=%ld list_edits=%ld outputs=%d "
+           "output=%s\n",
            st == RY_OK ? "ok" : ry_status_name(st), stats.steps, sim.ps.n, sim.t, stats.wall_s,
-           stats.particle_steps_per_s, omp_get_max_threads(), scheme_stats, sim.output_index,
-           sim.out_dir);
+           stats.particle_steps_per_s, omp_get_max_threads(), scheme_stats, sim.searches,
+           sim.nl_edits, sim.output_index, sim.out_dir);
     ry_sim_free(&sim);
     ry_case_free(c);
     free(a.sets);

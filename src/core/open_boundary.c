@@ -265,6 +265,7 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
         }
         ry_particles_remove(ps, remove);
     }
+    if (nspawn || nremove) st = ry_sim_list_edit(sim, n, nspawn, remove, err);
 done:
     free(remove);
     free(spawn);

@@ -11,6 +11,7 @@
 #include "ryushi/geometry.h"
 #include "ryushi/sim.h"
 #include "core/guard_check.h"
+#include "neighbor/neighbor_internal.h"
 
 double ry_wall_time(void) {
     struct timespec ts;
@@ -415,6 +416,126 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     for (int d = 0; d < sim->dim; ++d) memcpy(ps->f[sim->f_xref + d], x[d], ps->n * sizeof(double));
     if (sim->cells_only) return RY_OK;
     return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err);
+}
+
+/* The list after ry_open_update (see sim.h). Pairs are those of a build from the reference
+ * positions (each row holds j with |xref_i - xref_j| < reach, sorted): the surviving rows keep
+ * their surviving entries, renumbered (the compaction keeps the order, so the rows stay
+ * sorted); a new particle takes its position as its reference and pairs with every particle
+ * within reach of it, found by a scan of all of them (a few new particles against a search of
+ * every row). */
+ry_status ry_sim_list_edit(ry_sim *sim, size_t n_old, size_t nspawn, const uint8_t *remove,
+                           ry_error *err) {
+    ry_particles *ps = &sim->ps;
+    ry_nlist *nl = &sim->nl;
+    const size_t n = ps->n;
+    /* Otherwise the next call of ry_sim_neighbors searches afresh (the count differs). */
+    if (sim->cells_only || sim->par || sim->nl_restore || !nl->offset || nl->n != n_old ||
+        !(sim->nl_skin > 0) || !(sim->nl_radius > 0) || (nspawn == 0 && !remove))
+        return RY_OK;
+    const int dim = sim->dim;
+    const double reach = sim->nl_radius + sim->nl_skin * sim->nl_radius; /* as the search */
+    const double r2max = reach * reach;
+    double *xr[3];
+    const double *xc[3];
+    for (int d = 0; d < 3; ++d) {
+        xr[d] = d < dim ? ps->f[sim->f_xref + d] : NULL;
+        xc[d] = xr[d];
+    }
+    const size_t first = n - nspawn; /* the new particles, last after the compaction */
+    for (size_t k = first; k < n; ++k)
+        for (int d = 0; d < dim; ++d) xr[d][k] = ps->f[RY_F_X + d][k];
+    size_t *newidx = malloc((n_old + 1) * sizeof *newidx); /* old -> new, SIZE_MAX: removed */
+    size_t *oldof = malloc((n + 1) * sizeof *oldof);       /* new -> old (survivors) */
+    size_t *add = calloc(n + 1, sizeof *add);              /* new pairs per particle */
+    const size_t cap_n = n + n / 4 + 16; /* room to grow, as the search's own arrays */
+    size_t *off = malloc((cap_n + 1) * sizeof *off), cap_hits = 64, nhits = 0, cap_j = 0;
+    uint32_t *hits = malloc(2 * cap_hits * sizeof *hits); /* (i, k) with i < k or new */
+    uint32_t *nj = NULL;
+    ry_status st = RY_OK;
+    if (!newidx || !oldof || !add || !off || !hits) goto nomem;
+    for (size_t o = 0, a = 0; o < n_old; ++o) {
+        newidx[o] = remove && remove[o] ? SIZE_MAX : a;
+        if (newidx[o] != SIZE_MAX) oldof[a++] = o;
+    }
+    ry_nb_geom g;
+    ry_nb_geom_init(&g, &sim->box);
+    for (size_t k = first; k < n; ++k)
+        for (size_t i = 0; i < n; ++i) {
+            if (i == k || ry_nb_r2(&g, dim, xc, i, k) >= r2max) continue;
+            if (nhits == cap_hits) {
+                uint32_t *h = realloc(hits, 4 * cap_hits * sizeof *h);
+                if (!h) goto nomem;
+                hits = h;
+                cap_hits *= 2;
+            }
+            hits[2 * nhits] = (uint32_t)i;
+            hits[2 * nhits++ + 1] = (uint32_t)k;
+            if (i < first) add[i]++; /* pairs to append to the old row i */
+            add[k]++;                /* the length of the new row k */
+        }
+    /* Row lengths, their prefix sums, the rows. The new particles' own rows hold their hits
+     * (by i ascending); a surviving row gets its new neighbours after the old ones (the new
+     * indices are the largest). */
+    const long long nn = (long long)n;
+#pragma omp parallel for schedule(static)
+    for (long long aa = 0; aa < nn; ++aa) {
+        const size_t a = (size_t)aa;
+        size_t c = add[a];
+        if (a < first)
+            for (size_t q = nl->offset[oldof[a]]; q < nl->offset[oldof[a] + 1]; ++q)
+                c += newidx[nl->j[q]] != SIZE_MAX;
+        off[a + 1] = c;
+    }
+    off[0] = 0;
+    size_t maxrow = 0;
+    for (size_t a = 0; a < n; ++a) {
+        if (off[a + 1] > maxrow) maxrow = off[a + 1];
+        off[a + 1] += off[a];
+    }
+    cap_j = off[n] + off[n] / 8 + 16;
+    nj = malloc(cap_j * sizeof *nj);
+    if (!nj) goto nomem;
+#pragma omp parallel for schedule(static)
+    for (long long aa = 0; aa < nn; ++aa) {
+        const size_t a = (size_t)aa;
+        size_t p = off[a];
+        if (a < first)
+            for (size_t q = nl->offset[oldof[a]]; q < nl->offset[oldof[a] + 1]; ++q)
+                if (newidx[nl->j[q]] != SIZE_MAX) nj[p++] = (uint32_t)newidx[nl->j[q]];
+    }
+    /* the hits in the order found, k ascending and then i ascending: row i (old) takes the new
+     * particles ascending after its old entries, row k its hits */
+    for (size_t h = 0; h < nhits; ++h) {
+        const size_t i = hits[2 * h], k = hits[2 * h + 1];
+        if (i < first) nj[off[i + 1] - add[i]--] = (uint32_t)k;
+        nj[off[k + 1] - add[k]--] = (uint32_t)i;
+    }
+    free(nl->j);
+    free(nl->offset);
+    nl->j = nj;
+    nl->offset = off;
+    nl->cap_j = cap_j;
+    nl->cap_n = cap_n;
+    nl->n = n;
+    nl->max_row = maxrow;
+    nj = NULL;
+    off = NULL;
+    sim->nl_edits++;
+    sim->nl_generation++;
+    /* the cells as a search from the reference positions would leave them */
+    st = ry_cells_build(&sim->cells, &sim->box, reach, n, xc, err);
+    goto done;
+nomem:
+    st = ry_error_set(err, RY_ERR_NOMEM, "out of memory (neighbour list after in- and outflow)");
+done:
+    free(newidx);
+    free(oldof);
+    free(add);
+    free(off);
+    free(hits);
+    free(nj);
+    return st;
 }
 
 double ry_sim_bytes_per_particle(const ry_sim *sim) {

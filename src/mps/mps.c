@@ -357,10 +357,26 @@ static inline double sep(const ry_sim *sim, size_t i, size_t j, double *dx) {
     return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
 }
 
+/* Squared distances from particle i to the nb particles nj[0..nb-1] into r2 (no periodic
+ * sides; call with a literal dim, so that the loop unrolls and vectorises). */
+static inline void row_r2(int dim, const double *const x[3], size_t i, const uint32_t *nj,
+                          size_t nb, double *r2) {
+    for (size_t k = 0; k < nb; ++k) {
+        double s = 0;
+        for (int d = 0; d < dim; ++d) {
+            const double e = x[d][nj[k]] - x[d][i];
+            s += e * e;
+        }
+        r2[k] = s;
+    }
+}
+
 /* The pairs within re_g and re_l (the fields pj, pr, gend, lend of mps) from the neighbour
  * list, whose reach is the largest radius and a skin: the loops over them need neither the
  * distances nor the pairs beyond their radius again. Within each radius the pairs keep the
- * order of the list. */
+ * order of the list. Each row's squared distances go to a buffer of the thread, and the
+ * split into the inner and the outer pairs stores every entry and advances by a comparison
+ * (the branches it replaces fail unpredictably). */
 static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
     const size_t n = sim->ps.n, nq = sim->nl.offset[n];
     if (M->pq_cap < nq) {
@@ -386,47 +402,46 @@ static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
     int ok = 1;
 #pragma omp parallel reduction(&& : ok)
     {
-        /* the outer pairs of a row, until they follow the inner ones */
+        /* the row's squared distances; the outer pairs, until they follow the inner ones */
+        double *rb = malloc((rowmax + 1) * sizeof *rb);
         uint32_t *oj = malloc((rowmax + 1) * sizeof *oj);
         double *orr = malloc((rowmax + 1) * sizeof *orr);
-        ok = oj && orr;
+        ok = rb && oj && orr;
 #pragma omp for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
             if (!ok) continue;
-            const size_t lo = sim->nl.offset[i], hi = sim->nl.offset[i + 1];
-            const uint32_t *nj = sim->nl.j;
-            double *r2 = M->pr;
-            /* squared distances, in place (without periodic sides a loop the compiler
-             * vectorises) */
-            for (size_t q = lo; q < hi; ++q) {
-                double s = 0, dx[3];
-                if (periodic)
-                    s = sep(sim, i, nj[q], dx);
-                else
-                    for (int d = 0; d < dim; ++d) {
-                        const double e = x[d][nj[q]] - x[d][i];
-                        s += e * e;
-                    }
-                r2[q] = s;
+            const size_t lo = sim->nl.offset[i], nb = sim->nl.offset[i + 1] - lo;
+            const uint32_t *nj = sim->nl.j + lo;
+            if (periodic) {
+                double dx[3];
+                for (size_t k = 0; k < nb; ++k) rb[k] = sep(sim, i, nj[k], dx);
+            } else if (dim == 3) {
+                row_r2(3, x, i, nj, nb, rb);
+            } else if (dim == 2) {
+                row_r2(2, x, i, nj, nb, rb);
+            } else {
+                row_r2(1, x, i, nj, nb, rb);
             }
-            size_t a = lo, no = 0;
-            for (size_t q = lo; q < hi; ++q) {
-                const double v = r2[q];
-                const uint32_t j = nj[q];
-                if (v < ri2) {
-                    M->pj[a] = j;
-                    r2[a++] = v;
-                } else if (v < ro2) {
-                    oj[no] = j;
-                    orr[no++] = v;
-                }
+            uint32_t *pj = M->pj + lo;
+            double *pr = M->pr + lo;
+            size_t a = 0, no = 0;
+            for (size_t k = 0; k < nb; ++k) {
+                const double v = rb[k];
+                const uint32_t j = nj[k];
+                pj[a] = j;
+                pr[a] = v;
+                oj[no] = j;
+                orr[no] = v;
+                a += v < ri2;
+                no += (v >= ri2) & (v < ro2);
             }
-            memcpy(M->pj + a, oj, no * sizeof *oj);
-            memcpy(r2 + a, orr, no * sizeof *orr);
-            for (size_t q = lo; q < a + no; ++q) r2[q] = sqrt(r2[q]);
-            M->gend[i] = g_inner ? a : a + no;
-            M->lend[i] = g_inner ? a + no : a;
+            memcpy(pj + a, oj, no * sizeof *oj);
+            memcpy(pr + a, orr, no * sizeof *orr);
+            for (size_t k = 0; k < a + no; ++k) pr[k] = sqrt(pr[k]);
+            M->gend[i] = lo + (g_inner ? a : a + no);
+            M->lend[i] = lo + (g_inner ? a + no : a);
         }
+        free(rb);
         free(oj);
         free(orr);
     }
@@ -722,10 +737,14 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
     for (size_t i = 0; i < n; ++i) M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
     RY_TRY(assemble(sim, M, nunk, couple_viscous, dt, 1.0, err));
     const double re = M->re_l, cl = 2.0 * dim / (M->lambda * M->n0l);
-    M->last_viters = 0;
+    /* the components' right-hand sides and solutions: b and xs from d nunk */
+    const double *bs[3];
+    double *xv[3];
     for (int d = 0; d < dim; ++d) {
         const double *v = ps->f[RY_F_VX + d], *a = ps->f[RY_F_AX + d];
-        double *vs = ps->f[M->f_vs[d]];
+        double *bd = M->b + (size_t)d * nunk, *xd = M->xs + (size_t)d * nunk;
+        bs[d] = bd;
+        xv[d] = xd;
 #pragma omp parallel for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
             if (M->unk[i] < 0) continue;
@@ -736,17 +755,22 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
                 rhs += cl * dt * pair_nu(sim, M, i, j) * ry_mps_weight_tamai(M->pr[q], re) *
                        wall_beta(sim, M, i, j) * v[j];
             }
-            M->b[M->unk[i]] = rhs;
-            M->xs[M->unk[i]] = v[i];
+            bd[M->unk[i]] = rhs;
+            xd[M->unk[i]] = v[i];
         }
-        int it;
-        double res;
-        ry_csr_dist dd;
-        RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->vtol, (int)M->max_iter, &it, &res,
-                          dist_of(sim, M, &dd), err));
-        M->last_viters += it;
+    }
+    /* the components together: one pass over the matrix serves all three */
+    int it[3];
+    double res[3];
+    ry_csr_dist dd;
+    RY_TRY(ry_csr_pcg_multi(&M->A, dim, bs, xv, M->vtol, (int)M->max_iter, it, res,
+                            dist_of(sim, M, &dd), err));
+    M->last_viters = 0;
+    for (int d = 0; d < dim; ++d) {
+        double *vs = ps->f[M->f_vs[d]];
+        M->last_viters += it[d];
         for (size_t i = 0; i < n; ++i)
-            if (M->unk[i] >= 0) vs[i] = M->xs[M->unk[i]];
+            if (M->unk[i] >= 0) vs[i] = xv[d][M->unk[i]];
     }
     return RY_OK;
 }

@@ -42,14 +42,39 @@ void ry_csr_free(ry_csr *a) {
     *a = (ry_csr){0};
 }
 
-void ry_csr_mul(const ry_csr *a, const double *x, double *y) {
+/* y_k = A x_k for k < m (m at most RY_CSR_MAX_RHS): one pass over the matrix for all of them,
+ * each sum in the order of the row (the same bits as one product at a time). Call with a
+ * literal m, so that the sums stay in registers. */
+static inline void csr_mul_m(const ry_csr *a, int m, const double *const *x, double *const *y) {
     const size_t n = a->n;
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (size_t i = 0; i < n; ++i) {
-        double s = 0;
-        for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) s += a->val[q] * x[a->col[q]];
-        y[i] = s;
+        double s[RY_CSR_MAX_RHS] = {0};
+        for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) {
+            const double v = a->val[q];
+            const uint32_t c = a->col[q];
+            for (int k = 0; k < m; ++k) s[k] += v * x[k][c];
+        }
+        for (int k = 0; k < m; ++k) y[k][i] = s[k];
     }
+}
+
+static void csr_mul_any(const ry_csr *a, int m, const double *const *x, double *const *y) {
+    switch (m) {
+    case 1:
+        csr_mul_m(a, 1, x, y);
+        break;
+    case 2:
+        csr_mul_m(a, 2, x, y);
+        break;
+    default:
+        csr_mul_m(a, 3, x, y);
+        break;
+    }
+}
+
+void ry_csr_mul(const ry_csr *a, const double *x, double *y) {
+    csr_mul_any(a, 1, &x, &y);
 }
 
 /* Dot product in fixed blocks summed in order: the same bits for any thread count. */
@@ -79,59 +104,117 @@ static double ddot(const ry_csr_dist *d, const double *x, const double *y, size_
     return d->sum(d->ctx, s);
 }
 
-ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_iter, int *iters,
-                     double *resid, const ry_csr_dist *dist, ry_error *err) {
+/* The state of one of the systems solved together. */
+typedef struct pcg_one {
+    const double *b;
+    double *x, *r, *z, *p, *q;
+    double bnorm, rz, rn;
+    int iters, done;
+} pcg_one;
+
+ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *const x[], double tol,
+                           int max_iter, int iters[], double resid[], const ry_csr_dist *dist,
+                           ry_error *err) {
+    RY_CHECK(err, m >= 1 && m <= RY_CSR_MAX_RHS, RY_ERR_INTERNAL,
+             "conjugate gradients: %d right-hand sides (1 to %d)", m, RY_CSR_MAX_RHS);
     const size_t n = a->n;
-    double *r = a->work, *z = r + n, *p = z + n, *q = p + n;
-    *iters = 0;
-    *resid = 0;
+    size_t cw = a->cap_work;
+    RY_CHECK(err, grow((void **)&a->work, &cw, 4 * (size_t)m * n + 4, sizeof *a->work),
+             RY_ERR_NOMEM, "out of memory (conjugate gradients: %d vectors of %zu)", 4 * m, n);
+    a->cap_work = cw;
+    pcg_one s[RY_CSR_MAX_RHS];
+    for (int k = 0; k < m; ++k) {
+        double *w = a->work + 4 * (size_t)k * n;
+        s[k] = (pcg_one){b[k], x[k], w, w + n, w + 2 * n, w + 3 * n, 0, 0, 0, 0, 0};
+        iters[k] = 0;
+        resid[k] = 0;
+    }
     /* (a distributed system goes on with no local unknowns: the others' sums need this one) */
     if (n == 0 && !dist) return RY_OK;
-    const double bnorm = sqrt(ddot(dist, b, b, n));
-    if (bnorm == 0) {
-        for (size_t i = 0; i < n; ++i) x[i] = 0;
-        return RY_OK;
+    const double *in[RY_CSR_MAX_RHS];
+    double *out[RY_CSR_MAX_RHS];
+    int na = 0;
+    for (int k = 0; k < m; ++k) {
+        pcg_one *o = &s[k];
+        o->bnorm = sqrt(ddot(dist, o->b, o->b, n));
+        if (o->bnorm == 0) {
+            for (size_t i = 0; i < n; ++i) o->x[i] = 0;
+            o->done = 1;
+            continue;
+        }
+        if (dist) dist->sync(dist->ctx, o->x);
+        in[na] = o->x;
+        out[na++] = o->q;
     }
-    if (dist) dist->sync(dist->ctx, x);
-    ry_csr_mul(a, x, q);
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (size_t i = 0; i < n; ++i) {
-        r[i] = b[i] - q[i];
-        z[i] = r[i] / a->diag[i];
-        p[i] = z[i];
-    }
-    double rz = ddot(dist, r, z, n), rn = sqrt(ddot(dist, r, r, n));
-    int k = 0;
-    while (rn > tol * bnorm && k < max_iter) {
-        if (dist) dist->sync(dist->ctx, p);
-        ry_csr_mul(a, p, q);
-        const double pq = ddot(dist, p, q, n);
-        RY_CHECK(err, pq > 0 && isfinite(pq), RY_ERR_UNSTABLE,
-                 "conjugate gradients broke down after %d iterations (p.Ap = %g: the matrix is "
-                 "not positive definite)",
-                 k, pq);
-        const double alpha = rz / pq;
+    if (na > 0) csr_mul_any(a, na, in, out);
+    for (int k = 0; k < m; ++k) {
+        pcg_one *o = &s[k];
+        if (o->done) continue;
+        double *r = o->r, *z = o->z, *p = o->p;
+        const double *q = o->q, *bb = o->b;
 #pragma omp parallel for schedule(static) if (n > 4096)
         for (size_t i = 0; i < n; ++i) {
-            x[i] += alpha * p[i];
-            r[i] -= alpha * q[i];
+            r[i] = bb[i] - q[i];
             z[i] = r[i] / a->diag[i];
+            p[i] = z[i];
         }
-        const double rz1 = ddot(dist, r, z, n);
-        const double beta = rz1 / rz;
-        rz = rz1;
-#pragma omp parallel for schedule(static) if (n > 4096)
-        for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
-        rn = sqrt(ddot(dist, r, r, n));
-        ++k;
+        o->rz = ddot(dist, r, z, n);
+        o->rn = sqrt(ddot(dist, r, r, n));
     }
-    *iters = k;
-    *resid = rn / bnorm;
-    RY_CHECK(err, rn <= tol * bnorm, RY_ERR_UNSTABLE,
-             "conjugate gradients did not converge in %d iterations (relative residual %.3g, "
-             "tolerance %.3g)",
-             k, rn / bnorm, tol);
+    for (;;) {
+        pcg_one *act[RY_CSR_MAX_RHS];
+        na = 0;
+        for (int k = 0; k < m; ++k) {
+            pcg_one *o = &s[k];
+            if (o->done || !(o->rn > tol * o->bnorm && o->iters < max_iter)) continue;
+            if (dist) dist->sync(dist->ctx, o->p);
+            act[na] = o;
+            in[na] = o->p;
+            out[na++] = o->q;
+        }
+        if (na == 0) break;
+        csr_mul_any(a, na, in, out);
+        for (int k = 0; k < na; ++k) {
+            pcg_one *o = act[k];
+            double *xx = o->x, *r = o->r, *z = o->z, *p = o->p;
+            const double *q = o->q;
+            const double pq = ddot(dist, p, q, n);
+            RY_CHECK(err, pq > 0 && isfinite(pq), RY_ERR_UNSTABLE,
+                     "conjugate gradients broke down after %d iterations (p.Ap = %g: the matrix "
+                     "is not positive definite)",
+                     o->iters, pq);
+            const double alpha = o->rz / pq;
+#pragma omp parallel for schedule(static) if (n > 4096)
+            for (size_t i = 0; i < n; ++i) {
+                xx[i] += alpha * p[i];
+                r[i] -= alpha * q[i];
+                z[i] = r[i] / a->diag[i];
+            }
+            const double rz1 = ddot(dist, r, z, n);
+            const double beta = rz1 / o->rz;
+            o->rz = rz1;
+#pragma omp parallel for schedule(static) if (n > 4096)
+            for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
+            o->rn = sqrt(ddot(dist, r, r, n));
+            ++o->iters;
+        }
+    }
+    for (int k = 0; k < m; ++k) {
+        const pcg_one *o = &s[k];
+        if (o->done) continue;
+        iters[k] = o->iters;
+        resid[k] = o->rn / o->bnorm;
+        RY_CHECK(err, o->rn <= tol * o->bnorm, RY_ERR_UNSTABLE,
+                 "conjugate gradients did not converge in %d iterations (relative residual "
+                 "%.3g, tolerance %.3g)",
+                 o->iters, o->rn / o->bnorm, tol);
+    }
     return RY_OK;
+}
+
+ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_iter, int *iters,
+                     double *resid, const ry_csr_dist *dist, ry_error *err) {
+    return ry_csr_pcg_multi(a, 1, &b, &x, tol, max_iter, iters, resid, dist, err);
 }
 
 static void particle_sync(void *ctx, double *v) {

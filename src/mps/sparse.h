@@ -23,6 +23,9 @@ typedef struct ry_csr {
 ry_status ry_csr_reserve(ry_csr *a, size_t n, size_t nz, ry_error *err);
 void ry_csr_free(ry_csr *a);
 
+/* The most right-hand sides solved together (ry_csr_pcg_multi). */
+#define RY_CSR_MAX_RHS 3
+
 /* y = A x (OpenMP over rows). */
 void ry_csr_mul(const ry_csr *a, const double *x, double *y);
 
@@ -61,5 +64,13 @@ const ry_csr_dist *ry_particle_dist(ry_particle_unknowns *pu, ry_csr_dist *d);
  * the direction's halo entries synchronised before each product with A. */
 ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_iter, int *iters,
                      double *resid, const ry_csr_dist *dist, ry_error *err);
+
+/* The same for m systems with the one matrix (1 <= m <= RY_CSR_MAX_RHS), A x_k = b_k, each
+ * with its own iterations, residual and stop: each product with A serves the directions of
+ * all the systems not yet converged, so the matrix is read once per iteration instead of m
+ * times. Each solution has the same bits as from ry_csr_pcg. */
+ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *const x[], double tol,
+                           int max_iter, int iters[], double resid[], const ry_csr_dist *dist,
+                           ry_error *err);
 
 #endif

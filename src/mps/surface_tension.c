@@ -174,13 +174,16 @@ double ry_st_capillary_dt(const ry_surface_tension *st, const ry_sim *sim) {
     return sqrt(rho * st->l0 * st->l0 * st->l0 / (2 * RY_PI * st->sigma));
 }
 
-/* Separation x_j - x_i (minimum image) into dx; returns r^2. */
-static double pair_sep(const ry_sim *sim, size_t i, uint32_t j, double dx[3]) {
+/* Separation x_j - x_i (minimum image) into dx; returns r^2. Inline: the pair loops call it
+ * for every listed pair. */
+static inline double pair_sep(const ry_sim *sim, size_t i, uint32_t j, double dx[3]) {
     double r2 = 0;
+    const int dim = sim->dim;
     dx[0] = dx[1] = dx[2] = 0;
-    for (int d = 0; d < sim->dim; ++d) dx[d] = sim->ps.f[RY_F_X + d][j] - sim->ps.f[RY_F_X + d][i];
-    ry_box_min_image(&sim->box, dx);
-    for (int d = 0; d < sim->dim; ++d) r2 += dx[d] * dx[d];
+    for (int d = 0; d < dim; ++d) dx[d] = sim->ps.f[RY_F_X + d][j] - sim->ps.f[RY_F_X + d][i];
+    if (sim->box.periodic[0] | sim->box.periodic[1] | sim->box.periodic[2])
+        ry_box_min_image(&sim->box, dx);
+    for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
     return r2;
 }
 
@@ -208,11 +211,11 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
     *count = 0;
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
         const uint32_t j = sim->nl.j[q];
-        const double c = pair_coefficient(st, ps, i, j, csf);
-        if (c == 0.0) continue;
         double dx[3];
         const double r2 = pair_sep(sim, i, j, dx);
-        if (r2 >= re2 || r2 <= 0) continue;
+        if (r2 >= re2 || r2 <= 0) continue; /* (a third of the list lies beyond re) */
+        const double c = pair_coefficient(st, ps, i, j, csf);
+        if (c == 0.0) continue;
         const double r = sqrt(r2);
         const double f = c * (csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re));
         *count += csf ? f : 1.0;

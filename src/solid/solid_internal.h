@@ -53,7 +53,7 @@ typedef struct solid {
     double *sig; /* 9 per particle: Cauchy stress sigma = -P I + S */
     double *Ras; /* 9 per particle: artificial stress R_i (divided by rho_i^2) */
     size_t cap_pair; /* capacity of G and rev (quadratic correction; G, rev, vol reused) */
-    long rev_search; /* neighbour search that rev was built for */
+    long rev_search; /* list (sim->nl_generation) that rev was built for */
 } solid;
 
 /* Acceleration of free particle i from its internal force f (NULL for a clamped particle,

@@ -362,8 +362,8 @@ static ry_status quadratic_pairs(ry_sim *sim, solid *s, ry_error *err) {
         RY_CHECK(err, s->vol != NULL, RY_ERR_NOMEM, "out of memory");
     }
     for (size_t i = 0; i < n; ++i) s->vol[i] = ps->f[RY_F_MASS][i] / ps->f[RY_F_RHO][i];
-    if (s->rev_search == sim->searches) return RY_OK;
-    s->rev_search = sim->searches;
+    if (s->rev_search == sim->nl_generation) return RY_OK;
+    s->rev_search = sim->nl_generation;
 #pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
     for (size_t i = 0; i < n; ++i)
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q)

@@ -107,7 +107,7 @@ typedef struct iisph {
     double vtol;
     ry_csr A;
     int32_t *unk;    /* unknown number of a mobile particle, else -1 */
-    double *vb, *vx; /* right-hand sides (3 per unknown); one component's and its solution */
+    double *vb, *vx; /* right-hand sides (3 per unknown); the components' and their solutions */
     double *vtmp;    /* per particle: halo entries on their way from the owners */
     uint8_t *vown;   /* per unknown: owned by this process (a distributed run) */
     ry_particle_unknowns vpu; /* the distribution of the solve under way */
@@ -393,12 +393,12 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
         if (u) s->unk = u;
         double *b = realloc(s->vb, 3 * cap * sizeof *b);
         if (b) s->vb = b;
-        double *x = realloc(s->vx, 3 * cap * sizeof *x);
+        double *x = realloc(s->vx, 7 * cap * sizeof *x);
         if (x) s->vx = x;
         uint8_t *o = realloc(s->vown, cap * sizeof *o);
         if (o) s->vown = o;
         RY_CHECK(err, u && b && x && o, RY_ERR_NOMEM, "out of memory (implicit viscosity)");
-        s->vtmp = s->vx + 2 * cap;
+        s->vtmp = s->vx + 6 * cap;
         s->vcap = cap;
     }
     size_t nunk = 0;
@@ -465,24 +465,33 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
         for (int d = 0; d < 3; ++d)
             s->vb[3 * k + d] = d < dim ? m[i] * ps->f[RY_F_VX + d][i] + known[d] : 0.0;
     }
-    double *bd = s->vx, *xd = s->vx + nunk; /* component d: right-hand side, solution */
+    /* component d: right-hand side from d nunk, solution from (3 + d) nunk; the components
+     * are solved together, one pass over the matrix serving all three */
+    const double *bd[3];
+    double *xd[3];
+    for (int d = 0; d < dim; ++d) {
+        const double *v = ps->f[RY_F_VX + d];
+        double *b = s->vx + (size_t)d * nunk, *x = s->vx + (size_t)(3 + d) * nunk;
+        bd[d] = b;
+        xd[d] = x;
+        for (size_t i = 0; i < n; ++i)
+            if (s->unk[i] >= 0) {
+                b[s->unk[i]] = s->vb[3 * (size_t)s->unk[i] + d];
+                x[s->unk[i]] = v[i];
+            }
+    }
+    int it[3] = {0, 0, 0};
+    double res[3] = {0, 0, 0};
+    RY_TRY(ry_csr_pcg_multi(A, dim, bd, xd, s->vtol, RY_IISPH_VISCOUS_MAX_ITER, it, res, dd, err));
     for (int d = 0; d < dim; ++d) {
         double *v = ps->f[RY_F_VX + d];
         for (size_t i = 0; i < n; ++i)
             if (s->unk[i] >= 0) {
-                bd[s->unk[i]] = s->vb[3 * (size_t)s->unk[i] + d];
-                xd[s->unk[i]] = v[i];
-            }
-        int it = 0;
-        double res = 0;
-        RY_TRY(ry_csr_pcg(A, bd, xd, s->vtol, RY_IISPH_VISCOUS_MAX_ITER, &it, &res, dd, err));
-        for (size_t i = 0; i < n; ++i)
-            if (s->unk[i] >= 0) {
-                const double vn = xd[s->unk[i]];
+                const double vn = xd[d][s->unk[i]];
                 s->acc[3 * i + d] += (vn - v[i]) / dt;
                 v[i] = vn;
             }
-        s->viters_last += it;
+        s->viters_last += it[d];
     }
     s->viters_total += s->viters_last;
     return RY_OK;

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "ryushi/case.h"
+#include "ryushi/neighbor.h"
 #include "ryushi/sim.h"
 #include "ryushi/validate.h"
 
@@ -98,21 +99,27 @@ static void test_channel_poiseuille(void **state) {
     ry_table_free(&prof);
 }
 
+/* The channel of cases/channel_inflow.yaml set up (not run), its output in tmpdir/sub. */
+static void channel_setup(ry_case **c, ry_sim *sim, const char *sub) {
+    char cp[4096], od[512];
+    snprintf(cp, sizeof cp, "%s/cases/channel_inflow.yaml", root);
+    snprintf(od, sizeof od, "%s/%s", tmpdir, sub);
+    memset(sim, 0, sizeof *sim);
+    ry_error err = {0};
+    assert_int_equal(ry_case_load(c, cp, &err), RY_OK);
+    assert_int_equal(ry_sim_setup(sim, *c, od, &err), RY_OK);
+}
+
 /* Conversions at the outlet of the same channel (outlet zone x = 0.40..0.42 m): a fluid particle
  * inside the zone becomes an outlet particle; one that goes back upstream of the zone (gravity
  * pulling fluid back from an outlet above it) is fluid again, as is an outlet particle found far
  * from the zone; one past the downstream face is removed and counted as outflow. */
 static void test_outlet_conversions(void **state) {
     (void)state;
-    char cp[4096], od[512];
-    snprintf(cp, sizeof cp, "%s/cases/channel_inflow.yaml", root);
-    snprintf(od, sizeof od, "%s/conversions", tmpdir);
     ry_case *c = NULL;
     ry_sim sim;
-    memset(&sim, 0, sizeof sim);
     ry_error err = {0};
-    assert_int_equal(ry_case_load(&c, cp, &err), RY_OK);
-    assert_int_equal(ry_sim_setup(&sim, c, od, &err), RY_OK);
+    channel_setup(&c, &sim, "conversions");
     size_t a = sim.ps.n, b = sim.ps.n;
     for (size_t i = 0; i < sim.ps.n; ++i)
         if (sim.ps.kind[i] == RY_KIND_FLUID) {
@@ -149,6 +156,61 @@ static void test_outlet_conversions(void **state) {
     ry_case_free(c);
 }
 
+/* The neighbour list after in- and outflow (ry_sim_list_edit): the list of a search from the
+ * reference positions, row for row, with the new particles' positions as theirs; no search. */
+static void assert_list_as_search(ry_sim *sim) {
+    const size_t n = sim->ps.n;
+    const double reach = sim->nl_radius + sim->nl_skin * sim->nl_radius;
+    const double *xr[3] = {sim->ps.f[sim->f_xref], sim->ps.f[sim->f_xref + 1], NULL};
+    ry_cell_list cl = {0};
+    ry_nlist t = {0};
+    ry_error err = {0};
+    assert_int_equal(ry_cells_build(&cl, &sim->box, reach, n, xr, &err), RY_OK);
+    assert_int_equal(ry_nlist_build_cells(&t, &cl, &sim->box, reach, n, xr, &err), RY_OK);
+    assert_int_equal(sim->nl.n, n);
+    assert_memory_equal(t.offset, sim->nl.offset, (n + 1) * sizeof *t.offset);
+    assert_memory_equal(t.j, sim->nl.j, t.offset[n] * sizeof *t.j);
+    ry_nlist_free(&t);
+    ry_cells_free(&cl);
+}
+
+static void test_list_after_inflow(void **state) {
+    (void)state;
+    ry_case *c = NULL;
+    ry_sim sim;
+    ry_error err = {0};
+    channel_setup(&c, &sim, "list");
+    assert_int_equal(ry_sim_neighbors(&sim, sim.kernel.radius, &err), RY_OK);
+    const long searches = sim.searches;
+    /* the inlet's front layer crosses x = 0 (its copies enter upstream), and a fluid particle
+     * becomes an outlet particle */
+    size_t front = 0, a = sim.ps.n;
+    for (size_t i = 0; i < sim.ps.n; ++i) {
+        if (sim.ps.kind[i] == RY_KIND_INLET && sim.ps.f[RY_F_X][i] > -0.005) {
+            sim.ps.f[RY_F_X][i] += 0.003;
+            front++;
+        }
+        if (sim.ps.kind[i] == RY_KIND_FLUID && sim.ps.f[RY_F_X][i] > 0.39 && a == sim.ps.n) a = i;
+    }
+    assert_true(front == 20 && a < sim.ps.n);
+    sim.ps.f[RY_F_X][a] = 0.41;
+    const size_t n0 = sim.ps.n;
+    assert_int_equal(ry_open_update(&sim, &err), RY_OK);
+    assert_int_equal(sim.ps.n, n0 + front);
+    assert_list_as_search(&sim);
+    /* the outlet particle leaves, and a wall particle moves (the list is that of the reference
+     * positions, whatever the drift since) */
+    sim.ps.f[RY_F_X][a] = 0.425;
+    sim.ps.f[RY_F_X][n0 - 1] += 0.001;
+    assert_int_equal(ry_open_update(&sim, &err), RY_OK);
+    assert_int_equal(sim.ps.n, n0 + front - 1);
+    assert_list_as_search(&sim);
+    assert_int_equal(sim.nl_edits, 2);
+    assert_int_equal(sim.searches, searches);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 int main(void) {
     const char *r = getenv("RY_SOURCE_DIR");
     snprintf(root, sizeof root, "%s", r ? r : ".");
@@ -156,6 +218,7 @@ int main(void) {
     if (!mkdtemp(tmpdir)) return 1;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_outlet_conversions),
+        cmocka_unit_test(test_list_after_inflow),
         cmocka_unit_test(test_channel_poiseuille),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);

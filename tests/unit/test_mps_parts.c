@@ -118,32 +118,40 @@ static void test_csf_lattice(void **state) {
 
 /* -u'' = 1 on (0, 1), u(0) = u(1) = 0, by second differences on n interior points: the
  * discrete solution is exact for a quadratic, u = x (1 - x) / 2. */
+/* The 1D Poisson matrix tridiag(-1, 2, -1) of n rows. */
+static void poisson_1d(ry_csr *a, size_t n) {
+    ry_error err = {0};
+    assert_int_equal(ry_csr_reserve(a, n, 3 * n, &err), RY_OK);
+    size_t p = 0;
+    for (size_t i = 0; i < n; ++i) {
+        a->row[i] = p;
+        if (i > 0) {
+            a->col[p] = (uint32_t)(i - 1);
+            a->val[p++] = -1;
+        }
+        a->col[p] = (uint32_t)i;
+        a->val[p++] = 2;
+        a->diag[i] = 2;
+        if (i + 1 < n) {
+            a->col[p] = (uint32_t)(i + 1);
+            a->val[p++] = -1;
+        }
+    }
+    a->row[n] = p;
+}
+
 static void test_pcg_poisson_1d(void **state) {
     (void)state;
     enum { n = 200 };
     const double h = 1.0 / (n + 1);
     ry_csr a = {0};
     ry_error err = {0};
-    assert_int_equal(ry_csr_reserve(&a, n, 3 * n, &err), RY_OK);
-    size_t p = 0;
+    poisson_1d(&a, n);
     double b[n], x[n];
     for (size_t i = 0; i < n; ++i) {
-        a.row[i] = p;
-        if (i > 0) {
-            a.col[p] = (uint32_t)(i - 1);
-            a.val[p++] = -1;
-        }
-        a.col[p] = (uint32_t)i;
-        a.val[p++] = 2;
-        a.diag[i] = 2;
-        if (i + 1 < n) {
-            a.col[p] = (uint32_t)(i + 1);
-            a.val[p++] = -1;
-        }
         b[i] = h * h;
         x[i] = 0;
     }
-    a.row[n] = p;
     int it;
     double res;
     assert_int_equal(ry_csr_pcg(&a, b, x, 1e-12, 1000, &it, &res, NULL, &err), RY_OK);
@@ -159,6 +167,48 @@ static void test_pcg_poisson_1d(void **state) {
     ry_csr_free(&a);
 }
 
+/* Three systems with one matrix solved together: each solution, iteration count and residual
+ * the same, to the bit, as solved alone, though they stop at different iterations (a smooth
+ * right-hand side, a zero one, a rough one from a non-zero start). */
+static void test_pcg_multi_as_single(void **state) {
+    (void)state;
+    enum { n = 300 };
+    ry_csr a = {0};
+    ry_error err = {0};
+    poisson_1d(&a, n);
+    static double b[3][n], x0[3][n], xs[3][n], xm[3][n];
+    for (size_t i = 0; i < n; ++i) {
+        const double t = (i + 0.5) / n;
+        b[0][i] = sin(RY_PI * t) / (n * n);
+        b[1][i] = 0;
+        b[2][i] = (i % 7 < 3 ? 1.0 : -0.5) * t / n;
+        x0[0][i] = 0;
+        x0[1][i] = 0.25;
+        x0[2][i] = cos(3 * t);
+    }
+    int its[3], itm[3];
+    double rs[3], rm[3];
+    for (int k = 0; k < 3; ++k) {
+        memcpy(xs[k], x0[k], sizeof xs[k]);
+        memcpy(xm[k], x0[k], sizeof xm[k]);
+        assert_int_equal(ry_csr_pcg(&a, b[k], xs[k], 1e-10, 1000, &its[k], &rs[k], NULL, &err),
+                         RY_OK);
+    }
+    const double *bb[3] = {b[0], b[1], b[2]};
+    double *xx[3] = {xm[0], xm[1], xm[2]};
+    assert_int_equal(ry_csr_pcg_multi(&a, 3, bb, xx, 1e-10, 1000, itm, rm, NULL, &err), RY_OK);
+    assert_true(its[0] != its[2] && its[1] == 0);
+    for (int k = 0; k < 3; ++k) {
+        assert_int_equal(its[k], itm[k]);
+        assert_memory_equal(&rs[k], &rm[k], sizeof rs[k]);
+        assert_memory_equal(xs[k], xm[k], sizeof xs[k]);
+    }
+    assert_int_equal(
+        ry_csr_pcg_multi(&a, RY_CSR_MAX_RHS + 1, bb, xx, 1e-10, 1000, itm, rm, NULL, &err),
+        RY_ERR_INTERNAL);
+    ry_csr_free(&a);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lattice_constants_2d),
@@ -167,6 +217,7 @@ int main(void) {
         cmocka_unit_test(test_potential_force_is_derivative),
         cmocka_unit_test(test_csf_lattice),
         cmocka_unit_test(test_pcg_poisson_1d),
+        cmocka_unit_test(test_pcg_multi_as_single),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
