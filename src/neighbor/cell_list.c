@@ -330,16 +330,35 @@ int ry_cells_neighbours(const ry_cell_list *cl, const int per[3], size_t c, size
     return cnt;
 }
 
-static int cmp_u32(const void *a, const void *b) {
-    uint32_t u = *(const uint32_t *)a, v = *(const uint32_t *)b;
-    return (u > v) - (u < v);
+/* Sorts a[0..m-1], whose values lie below 2^(8 passes), by a least-significant-digit radix
+ * sort on bytes into tmp and back (m entries each). */
+static void radix_u32(uint32_t *a, size_t m, uint32_t *tmp, int passes) {
+    uint32_t *src = a, *dst = tmp;
+    for (int p = 0; p < passes; ++p) {
+        const int sh = 8 * p;
+        size_t cnt[256] = {0};
+        for (size_t k = 0; k < m; ++k) cnt[(src[k] >> sh) & 255u]++;
+        size_t sum = 0;
+        for (int d = 0; d < 256; ++d) {
+            const size_t c = cnt[d];
+            cnt[d] = sum;
+            sum += c;
+        }
+        for (size_t k = 0; k < m; ++k) dst[cnt[(src[k] >> sh) & 255u]++] = src[k];
+        uint32_t *t = src;
+        src = dst;
+        dst = t;
+    }
+    if (src != a) memcpy(a, src, m * sizeof *a);
 }
 
-/* Neighbours of particle i. Counting only when out is NULL; otherwise they are written to
- * out, which must have room for one entry more than their number (the stores are
- * unconditional, to avoid mispredicted branches), and sorted. */
+/* Neighbours of particle i, written to out, which must have room for one entry more than
+ * their number (the stores are unconditional, to avoid mispredicted branches), and sorted;
+ * tmp has room for as many (a long row out of order is radix-sorted through it, in passes
+ * bytes). */
 static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int dim,
-                               const double *const x[3], double r2max, size_t i, uint32_t *out) {
+                               const double *const x[3], double r2max, size_t i, uint32_t *out,
+                               uint32_t *tmp, int passes) {
     size_t cells[27];
     int nc = ry_cells_neighbours(cl, g->periodic, cl->cell_of[i], cells);
     size_t cnt = 0;
@@ -347,26 +366,19 @@ static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int 
     const uint32_t *order = cl->order;
     for (int q = 0; q < nc; ++q) {
         const size_t c = cells[q], end = start[c + 1];
-        if (out) {
-            for (size_t p = start[c]; p < end; ++p) {
-                const uint32_t j = order[p];
-                out[cnt] = j;
-                cnt += (ry_nb_r2(g, dim, x, i, j) < r2max) & (j != i);
-            }
-        } else {
-            for (size_t p = start[c]; p < end; ++p) {
-                const uint32_t j = order[p];
-                cnt += (ry_nb_r2(g, dim, x, i, j) < r2max) & (j != i);
-            }
+        for (size_t p = start[c]; p < end; ++p) {
+            const uint32_t j = order[p];
+            out[cnt] = j;
+            cnt += (ry_nb_r2(g, dim, x, i, j) < r2max) & (j != i);
         }
     }
-    if (out && cnt > 64) {
-        size_t p = 1;
-        while (p < cnt && out[p - 1] < out[p]) ++p;
-        if (p < cnt) qsort(out, cnt, sizeof *out, cmp_u32);
-    } else if (out) {
+    if (cnt > 64) {
         /* Runs from each cell are sorted; with particles ordered by cell, the whole list
          * already is, and this is a linear check. */
+        size_t p = 1;
+        while (p < cnt && out[p - 1] < out[p]) ++p;
+        if (p < cnt) radix_u32(out, cnt, tmp, passes);
+    } else {
         for (size_t p = 1; p < cnt; ++p) {
             uint32_t v = out[p];
             size_t q = p;
@@ -381,14 +393,14 @@ static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int 
 }
 
 static size_t cells_row_dim(const ry_cell_list *cl, const ry_nb_geom *g, const double *const x[3],
-                            double r2max, size_t i, uint32_t *out) {
+                            double r2max, size_t i, uint32_t *out, uint32_t *tmp, int passes) {
     switch (g->dim) {
     case 1:
-        return cells_row(cl, g, 1, x, r2max, i, out);
+        return cells_row(cl, g, 1, x, r2max, i, out, tmp, passes);
     case 2:
-        return cells_row(cl, g, 2, x, r2max, i, out);
+        return cells_row(cl, g, 2, x, r2max, i, out, tmp, passes);
     default:
-        return cells_row(cl, g, 3, x, r2max, i, out);
+        return cells_row(cl, g, 3, x, r2max, i, out, tmp, passes);
     }
 }
 
@@ -412,6 +424,8 @@ ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_bo
     size_t *off = nl->offset;
     const uint32_t *order = cl->order;
     const long long nn = (long long)n;
+    int passes = 1; /* bytes of the largest index */
+    while (passes < 4 && (uint64_t)(n - 1) >> (8 * passes)) ++passes;
 
     /* One pass. Each thread takes a contiguous run of particles in cell order (consecutive
      * ones share their candidate cells, which stay in cache) and writes their rows, one after
@@ -424,8 +438,8 @@ ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_bo
     {
         const long long nt = omp_get_num_threads(), t = omp_get_thread_num();
         const long long lo = nn * t / nt, hi = nn * (t + 1) / nt;
-        uint32_t *buf = NULL;
-        size_t len = 0, cap = 0;
+        uint32_t *buf = NULL, *tmp = NULL;
+        size_t len = 0, cap = 0, tcap = 0;
         int mine = 0;
         for (long long p = lo; p < hi && !mine; ++p) {
             const size_t i = order[p];
@@ -442,7 +456,16 @@ ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_bo
                 buf = b;
                 cap = c;
             }
-            const size_t cnt = cells_row_dim(cl, &g, x, r2max, i, buf + len);
+            if (cand > tcap) {
+                uint32_t *b = realloc(tmp, 2 * cand * sizeof *b);
+                if (!b) {
+                    mine = 1;
+                    break;
+                }
+                tmp = b;
+                tcap = 2 * cand;
+            }
+            const size_t cnt = cells_row_dim(cl, &g, x, r2max, i, buf + len, tmp, passes);
             off[i + 1] = cnt;
             len += cnt;
         }
@@ -468,6 +491,7 @@ ry_status ry_nlist_build_cells(ry_nlist *nl, const ry_cell_list *cl, const ry_bo
             }
         }
         free(buf);
+        free(tmp);
     }
     RY_CHECK(err, !failed, RY_ERR_NOMEM,
              "neighbour list: no memory for the rows of %zu particles (%zu entries)", n, total);
