@@ -356,7 +356,7 @@ static void radix_u32(uint32_t *a, size_t m, uint32_t *tmp, int passes) {
  * their number (the stores are unconditional, to avoid mispredicted branches), and sorted;
  * tmp has room for as many (a long row out of order is radix-sorted through it, in passes
  * bytes). */
-static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int dim,
+static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int dim, int per,
                                const double *const x[3], double r2max, size_t i, uint32_t *out,
                                uint32_t *tmp, int passes) {
     size_t cells[27];
@@ -366,11 +366,23 @@ static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int 
     const uint32_t *order = cl->order;
     for (int q = 0; q < nc; ++q) {
         const size_t c = cells[q], end = start[c + 1];
-        for (size_t p = start[c]; p < end; ++p) {
-            const uint32_t j = order[p];
-            out[cnt] = j;
-            cnt += (ry_nb_r2(g, dim, x, i, j) < r2max) & (j != i);
-        }
+        if (per)
+            for (size_t p = start[c]; p < end; ++p) {
+                const uint32_t j = order[p];
+                out[cnt] = j;
+                cnt += (ry_nb_r2(g, dim, x, i, j) < r2max) & (j != i);
+            }
+        else /* the same distance without the periodic correction (0 in open directions) */
+            for (size_t p = start[c]; p < end; ++p) {
+                const uint32_t j = order[p];
+                double r2 = 0.0;
+                for (int d = 0; d < dim; ++d) {
+                    const double dx = x[d][i] - x[d][j];
+                    r2 += dx * dx;
+                }
+                out[cnt] = j;
+                cnt += (r2 < r2max) & (j != i);
+            }
     }
     if (cnt > 64) {
         /* Runs from each cell are sorted; with particles ordered by cell, the whole list
@@ -394,13 +406,20 @@ static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int 
 
 static size_t cells_row_dim(const ry_cell_list *cl, const ry_nb_geom *g, const double *const x[3],
                             double r2max, size_t i, uint32_t *out, uint32_t *tmp, int passes) {
-    switch (g->dim) {
-    case 1:
-        return cells_row(cl, g, 1, x, r2max, i, out, tmp, passes);
+    const int per = g->periodic[0] | g->periodic[1] | g->periodic[2];
+    switch (g->dim * 2 + per) {
     case 2:
-        return cells_row(cl, g, 2, x, r2max, i, out, tmp, passes);
+        return cells_row(cl, g, 1, 0, x, r2max, i, out, tmp, passes);
+    case 3:
+        return cells_row(cl, g, 1, 1, x, r2max, i, out, tmp, passes);
+    case 4:
+        return cells_row(cl, g, 2, 0, x, r2max, i, out, tmp, passes);
+    case 5:
+        return cells_row(cl, g, 2, 1, x, r2max, i, out, tmp, passes);
+    case 6:
+        return cells_row(cl, g, 3, 0, x, r2max, i, out, tmp, passes);
     default:
-        return cells_row(cl, g, 3, x, r2max, i, out, tmp, passes);
+        return cells_row(cl, g, 3, 1, x, r2max, i, out, tmp, passes);
     }
 }
 

@@ -39,15 +39,20 @@ ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int nee
             for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
             if (periodic) ry_box_min_image(&sim->box, dx);
             for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
-            double *P = cv + q * RY_PAIR_STRIDE;
-            memset(P, 0, RY_PAIR_STRIDE * sizeof(double));
+            /* every field stored (zeros beyond the kernel and the dimension): a memset of
+             * each entry first was a library call per pair */
+            double *P = cv + q * RY_PAIR_STRIDE, w = 0, f = 0;
+            if (r2 < rad2 && r2 > 0) {
+                const double r = sqrt(r2);
+                w = ry_kernel_w(k, r);
+                f = ry_kernel_dwdr(k, r) / r;
+            }
+            P[RY_PW_W] = w;
             P[RY_PW_R2] = r2;
-            for (int d = 0; d < dim; ++d) P[RY_PW_DX + d] = dx[d];
-            if (r2 >= rad2 || r2 <= 0) continue;
-            const double r = sqrt(r2);
-            P[RY_PW_W] = ry_kernel_w(k, r);
-            const double f = ry_kernel_dwdr(k, r) / r;
-            for (int d = 0; d < dim; ++d) P[RY_PW_GX + d] = f * dx[d];
+            for (int d = 0; d < 3; ++d) {
+                P[RY_PW_GX + d] = f * dx[d];
+                P[RY_PW_DX + d] = dx[d];
+            }
         }
     }
     return RY_OK;
