@@ -284,13 +284,14 @@ static void viscous_velocities(ry_sim *sim, iisph *s) {
     const size_t n = ps->n;
     const int dim = sim->dim;
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *nb = s->pc.j; /* the pairs within the support */
+    const size_t *end = s->pc.end;
     const double *cv = s->pc.v;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         double sw = 0, sv[3] = {0, 0, 0};
         if (s->ghost && ps->kind[i] == RY_KIND_WALL)
-            for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            for (size_t q = off[i]; q < end[i]; ++q) {
                 const uint32_t j = nb[q];
                 if (!MOBILE[ps->kind[j]]) continue;
                 const double w = cv[q * RY_PAIR_STRIDE + RY_PW_W];
@@ -311,7 +312,8 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
     const size_t n = ps->n;
     const int dim = sim->dim;
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *nb = s->pc.j; /* the pairs within the support */
+    const size_t *end = s->pc.end;
     const uint8_t *kind = ps->kind;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS];
     const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
@@ -321,7 +323,7 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
     for (size_t i = 0; i < n; ++i) {
         double sw = w0;
         if (MOBILE[kind[i]])
-            for (size_t q = off[i]; q < off[i + 1]; ++q) sw += cv[q * RY_PAIR_STRIDE + RY_PW_W];
+            for (size_t q = off[i]; q < end[i]; ++q) sw += cv[q * RY_PAIR_STRIDE + RY_PW_W];
         delta[i] = sw;
     }
     if (sim->par) sim->par->sync(sim, delta, 1); /* halo copies: their owners' values */
@@ -340,7 +342,7 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
         double a[3] = {0, 0, 0};
         if (MOBILE[kind[i]]) {
             const double mui = dyn_viscosity(sim, s, i);
-            for (size_t q = off[i]; !s->implicit && q < off[i + 1]; ++q) {
+            for (size_t q = off[i]; !s->implicit && q < end[i]; ++q) {
                 const uint32_t j = nb[q];
                 const double *P = cv + q * RY_PAIR_STRIDE;
                 if (P[RY_PW_W] == 0) continue;
@@ -411,7 +413,8 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
     s->viters_last = 0;
     if (nunk == 0 && !dd) return RY_OK; /* (distributed: the others' sums need this process) */
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *nb = s->pc.j; /* the pairs within the support */
+    const size_t *end = s->pc.end;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
     const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h;
     ry_csr *A = &s->A;
@@ -421,7 +424,7 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
     for (size_t i = 0; i < n; ++i) {
         if (s->unk[i] < 0) continue;
         size_t len = 1;
-        for (size_t q = off[i]; q < off[i + 1]; ++q)
+        for (size_t q = off[i]; q < end[i]; ++q)
             len += s->unk[nb[q]] >= 0 && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
         A->row[(size_t)s->unk[i] + 1] = len;
     }
@@ -435,7 +438,7 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
         const size_t pdiag = p++;
         const double mui = dyn_viscosity(sim, s, i), vi = 1.0 / delta[i];
         double diag = m[i], known[3] = {0, 0, 0};
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+        for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
             const double *P = cv + q * RY_PAIR_STRIDE;
             if (P[RY_PW_W] == 0) continue;
@@ -506,7 +509,8 @@ static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err)
     const size_t n = ps->n;
     const int dim = sim->dim;
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *nb = s->pc.j; /* the pairs within the support */
+    const size_t *end = s->pc.end;
     const uint8_t *kind = ps->kind;
     const double *cv = s->pc.v, *rho = ps->f[RY_F_RHO];
     wall_map *m = &s->wm;
@@ -523,7 +527,7 @@ static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err)
     for (size_t i = 0; i < n; ++i) {
         size_t c = 0;
         if (kind[i] == RY_KIND_WALL || kind[i] == RY_KIND_INLET)
-            for (size_t q = off[i]; q < off[i + 1]; ++q)
+            for (size_t q = off[i]; q < end[i]; ++q)
                 c += MOBILE[kind[nb[q]]] && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
         m->cnt[i] = c;
     }
@@ -553,7 +557,7 @@ static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err)
     for (size_t k = 0; k < m->nw; ++k) {
         const size_t i = m->w[k];
         size_t e = m->off[k];
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+        for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
             const double *P = cv + q * RY_PAIR_STRIDE;
             if (!MOBILE[kind[j]] || P[RY_PW_W] == 0) continue;
@@ -572,7 +576,8 @@ static ry_status grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *nb = s->pc.j; /* the pairs within the support */
+    const size_t *end = s->pc.end;
     const uint8_t *kind = ps->kind;
     const double *cv = s->pc.v;
     grad_list *l = &s->gl;
@@ -588,8 +593,7 @@ static ry_status grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
     for (size_t i = 0; i < n; ++i) {
         size_t c = 0;
         if (MOBILE[kind[i]])
-            for (size_t q = off[i]; q < off[i + 1]; ++q)
-                c += RY_GRAD_NONZERO(cv + q * RY_PAIR_STRIDE);
+            for (size_t q = off[i]; q < end[i]; ++q) c += RY_GRAD_NONZERO(cv + q * RY_PAIR_STRIDE);
         l->off[i + 1] = c;
     }
     l->off[0] = 0;
@@ -607,7 +611,7 @@ static ry_status grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
     for (size_t i = 0; i < n; ++i) {
         size_t e = l->off[i];
         if (!MOBILE[kind[i]]) continue;
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+        for (size_t q = off[i]; q < end[i]; ++q) {
             const double *P = cv + q * RY_PAIR_STRIDE;
             if (!RY_GRAD_NONZERO(P)) continue;
             l->j[e] = nb[q];
@@ -814,7 +818,8 @@ static ry_status surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
     for (size_t i = 0; i < n; ++i)
         if (!s->stw.tag[i]) P[i] = 0.0;
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *nb = s->pc.j; /* the pairs within the support */
+    const size_t *end = s->pc.end;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
     /* The reference R_i the force counts pressures from: P_i at the surface, and beneath it the
      * mean Laplace jump of all the surface particles (for one drop: its jump). With 0 there,
@@ -844,7 +849,7 @@ static ry_status surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
         if (R[i] == 0.0) continue;
         double a[3] = {0, 0, 0};
         const double di2 = 1.0 / (delta[i] * delta[i]);
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+        for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
             const double *Q = cv + q * RY_PAIR_STRIDE;
             const double f = di2 + (MOBILE[ps->kind[j]] ? 1.0 / (delta[j] * delta[j]) : di2);

@@ -38,7 +38,8 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         cf->cap = n;
     }
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *nb = pc->j; /* the pairs within the support */
+    const size_t *end = pc->end;
     const uint8_t *kind = ps->kind, *mat = ps->material;
     const double *cv = pc->v;
     double *cs = ps->f[cf->f_colour], *kap = ps->f[cf->f_curvature], *nrm = cf->nrm;
@@ -53,7 +54,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
             continue;
         }
         double sn = w0 * (mat[i] == cm) / delta[i], sd = w0 / delta[i];
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+        for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
             if (!mobile[kind[j]]) continue;
             const double wv = cv[q * RY_PAIR_STRIDE + RY_PW_W] / delta[j];
@@ -67,7 +68,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
     for (size_t i = 0; i < n; ++i) { /* normal n = grad c' */
         double g[3] = {0, 0, 0};
         if (mobile[kind[i]])
-            for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            for (size_t q = off[i]; q < end[i]; ++q) {
                 const uint32_t j = nb[q];
                 if (!mobile[kind[j]]) continue;
                 const double *P = cv + q * RY_PAIR_STRIDE;
@@ -93,7 +94,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         const double li = ln[i];
         if (li <= thr) continue;
         double num = 0, den = 0;
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+        for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
             if (!mobile[kind[j]]) continue;
             const double *nj = nrm + 3 * j;
@@ -122,7 +123,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
             const double li = ln[i];
             if (li <= thr) continue;
             double num = w0 * li * kap[i] / delta[i], den = w0 * li / delta[i];
-            for (size_t q = off[i]; q < off[i + 1]; ++q) {
+            for (size_t q = off[i]; q < end[i]; ++q) {
                 const uint32_t j = nb[q];
                 if (!mobile[kind[j]]) continue;
                 const double lj = ln[j];

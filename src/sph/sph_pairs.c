@@ -3,7 +3,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int need[RY_KIND_COUNT],
                              ry_error *err) {
@@ -12,9 +11,18 @@ ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int nee
     if (pc->cap < m) {
         size_t cap = m + m / 4 + 64;
         double *v = realloc(pc->v, cap * RY_PAIR_STRIDE * sizeof(double));
-        RY_CHECK(err, v != NULL, RY_ERR_NOMEM, "out of memory (pair cache of %zu entries)", m);
-        pc->v = v;
+        if (v) pc->v = v;
+        uint32_t *j = realloc(pc->j, cap * sizeof *j);
+        if (j) pc->j = j;
+        RY_CHECK(err, v && j, RY_ERR_NOMEM, "out of memory (pair cache of %zu entries)", m);
         pc->cap = cap;
+    }
+    if (pc->cap_n < n) {
+        size_t cap = n + n / 4 + 64;
+        size_t *e = realloc(pc->end, cap * sizeof *e);
+        RY_CHECK(err, e != NULL, RY_ERR_NOMEM, "out of memory (pair cache of %zu rows)", n);
+        pc->end = e;
+        pc->cap_n = cap;
     }
     const ry_kernel *k = &sim->kernel;
     const int dim = sim->dim;
@@ -25,43 +33,57 @@ ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int nee
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
     double *cv = pc->v;
-#pragma omp parallel for schedule(dynamic, 64)
-    for (size_t i = 0; i < n; ++i) {
-        double *row = cv + off[i] * RY_PAIR_STRIDE;
-        const size_t len = off[i + 1] - off[i];
-        if (!need[ps->kind[i]]) {
-            memset(row, 0, len * RY_PAIR_STRIDE * sizeof(double));
-            continue;
-        }
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            const uint32_t j = nb[q];
-            double dx[3] = {0, 0, 0}, r2 = 0;
-            for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
-            if (periodic) ry_box_min_image(&sim->box, dx);
-            for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
-            /* every field stored (zeros beyond the kernel and the dimension): a memset of
-             * each entry first was a library call per pair */
-            double *P = cv + q * RY_PAIR_STRIDE, w = 0, f = 0;
-            if (r2 < rad2 && r2 > 0) {
-                const double r = sqrt(r2);
-                w = ry_kernel_w(k, r);
-                f = ry_kernel_dwdr(k, r) / r;
+    size_t rowmax = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (off[i + 1] - off[i] > rowmax) rowmax = off[i + 1] - off[i];
+    int ok = 1;
+#pragma omp parallel reduction(&& : ok)
+    {
+        /* the row's entries within the support: chosen without branches (a third of the list
+         * lies beyond it, in no predictable order), then filled */
+        uint32_t *in = malloc((rowmax + 1) * sizeof *in);
+        ok = in != NULL;
+#pragma omp for schedule(dynamic, 64)
+        for (size_t i = 0; i < n; ++i) {
+            size_t c = 0;
+            for (size_t q = off[i]; ok && need[ps->kind[i]] && q < off[i + 1]; ++q) {
+                double dx[3] = {0, 0, 0}, r2 = 0;
+                for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][nb[q]];
+                if (periodic) ry_box_min_image(&sim->box, dx);
+                for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+                in[c] = (uint32_t)(q - off[i]);
+                c += (r2 < rad2) & (r2 > 0);
             }
-            P[RY_PW_W] = w;
-            P[RY_PW_R2] = r2;
-            for (int d = 0; d < 3; ++d) {
-                P[RY_PW_GX + d] = f * dx[d];
-                P[RY_PW_DX + d] = dx[d];
+            for (size_t e = 0; e < c; ++e) {
+                const size_t q = off[i] + in[e];
+                const uint32_t j = nb[q];
+                double dx[3] = {0, 0, 0}, r2 = 0;
+                for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
+                if (periodic) ry_box_min_image(&sim->box, dx);
+                for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+                const double r = sqrt(r2), f = ry_kernel_dwdr(k, r) / r;
+                double *P = cv + (off[i] + e) * RY_PAIR_STRIDE; /* zeros beyond the dimension */
+                P[RY_PW_W] = ry_kernel_w(k, r);
+                P[RY_PW_R2] = r2;
+                for (int d = 0; d < 3; ++d) {
+                    P[RY_PW_GX + d] = f * dx[d];
+                    P[RY_PW_DX + d] = dx[d];
+                }
+                pc->j[off[i] + e] = j;
             }
+            pc->end[i] = off[i] + c;
         }
+        free(in);
     }
+    RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (pair cache rows)");
     return RY_OK;
 }
 
 void ry_pair_cache_free(ry_pair_cache *pc) {
     free(pc->v);
-    pc->v = NULL;
-    pc->cap = 0;
+    free(pc->j);
+    free(pc->end);
+    *pc = (ry_pair_cache){0};
 }
 
 double ry_lattice_number_density(const ry_kernel *k, int dim, double dx) {

@@ -1,6 +1,8 @@
-/* Pair cache shared by the implicit SPH schemes: for every entry q of the CSR neighbour list,
- * the kernel value and its gradient grad_i W_ij (zero for pairs beyond the support radius that
- * the Verlet skin keeps in the list), computed once per step and read by every later pass. */
+/* Pair cache shared by the implicit SPH schemes: the pairs of the CSR neighbour list within
+ * the kernel's support (0 < r^2 < radius^2; the Verlet skin's pairs beyond it are left out),
+ * with the kernel value and its gradient grad_i W_ij, computed once per step and read by every
+ * later pass. Row i holds them from the list's offset[i] to end[i], in the list's order, with
+ * the neighbour j[q]: the passes skip only the pairs whose terms were exact zeros. */
 #ifndef RYUSHI_SPH_PAIRS_H
 #define RYUSHI_SPH_PAIRS_H
 
@@ -11,11 +13,13 @@ enum { RY_PW_W, RY_PW_GX, RY_PW_GY, RY_PW_GZ, RY_PW_R2, RY_PW_DX, RY_PW_DY, RY_P
 #define RY_PAIR_STRIDE 8
 
 typedef struct ry_pair_cache {
-    double *v; /* RY_PAIR_STRIDE x (entries of the list) */
-    size_t cap;
+    double *v;   /* RY_PAIR_STRIDE x (entries of the list) */
+    uint32_t *j; /* the neighbour of each entry */
+    size_t *end; /* per particle: the end of its row */
+    size_t cap, cap_n;
 } ry_pair_cache;
 
-/* Fills the cache for the rows of the particles with need[kind] set (other rows are zero). */
+/* Fills the cache for the rows of the particles with need[kind] set (other rows are empty). */
 ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int need[RY_KIND_COUNT],
                              ry_error *err);
 void ry_pair_cache_free(ry_pair_cache *pc);

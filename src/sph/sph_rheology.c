@@ -56,7 +56,8 @@ ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc
         r->cap = cap;
     }
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = sim->nl.j;
+    const uint32_t *nb = pc->j; /* the pairs within the support */
+    const size_t *end = pc->end;
     const double *cv = pc->v;
     const double *v[3], *rho = ps->f[RY_F_RHO];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
@@ -78,7 +79,7 @@ ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc
          * x_ij): exact for linear fields however one-sided the neighbourhood. The velocity
          * over the mobile and (with vwall) fixed neighbours; the stress over the mobile. */
         double mv[3][3] = {{0}}, mt[3][3] = {{0}}, gv[6][3] = {{0}}, gt[6][3] = {{0}};
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
+        for (size_t q = off[i]; q < end[i]; ++q) {
             const double *P = cv + q * RY_PAIR_STRIDE;
             if (P[RY_PW_W] == 0) continue;
             const uint32_t j = nb[q];
