@@ -418,6 +418,17 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     return ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err);
 }
 
+/* The surviving entries of the old row o, renumbered, into out (NULL: counted only). */
+static size_t row_survivors(const ry_nlist *nl, size_t o, const size_t *newidx, uint32_t *out) {
+    size_t c = 0;
+    for (size_t q = nl->offset[o]; q < nl->offset[o + 1]; ++q)
+        if (newidx[nl->j[q]] != SIZE_MAX) {
+            if (out) out[c] = (uint32_t)newidx[nl->j[q]];
+            ++c;
+        }
+    return c;
+}
+
 /* The list after ry_open_update (see sim.h). Pairs are those of a build from the reference
  * positions (each row holds j with |xref_i - xref_j| < reach, sorted): the surviving rows keep
  * their surviving entries, renumbered (the compaction keeps the order, so the rows stay
@@ -436,15 +447,11 @@ ry_status ry_sim_list_edit(ry_sim *sim, size_t n_old, size_t nspawn, const uint8
     const int dim = sim->dim;
     const double reach = sim->nl_radius + sim->nl_skin * sim->nl_radius; /* as the search */
     const double r2max = reach * reach;
-    double *xr[3];
-    const double *xc[3];
-    for (int d = 0; d < 3; ++d) {
-        xr[d] = d < dim ? ps->f[sim->f_xref + d] : NULL;
-        xc[d] = xr[d];
-    }
+    const double *xc[3]; /* the reference positions */
+    for (int d = 0; d < 3; ++d) xc[d] = d < dim ? ps->f[sim->f_xref + d] : NULL;
     const size_t first = n - nspawn; /* the new particles, last after the compaction */
     for (size_t k = first; k < n; ++k)
-        for (int d = 0; d < dim; ++d) xr[d][k] = ps->f[RY_F_X + d][k];
+        for (int d = 0; d < dim; ++d) ps->f[sim->f_xref + d][k] = ps->f[RY_F_X + d][k];
     size_t *newidx = malloc((n_old + 1) * sizeof *newidx); /* old -> new, SIZE_MAX: removed */
     size_t *oldof = malloc((n + 1) * sizeof *oldof);       /* new -> old (survivors) */
     size_t *add = calloc(n + 1, sizeof *add);              /* new pairs per particle */
@@ -481,11 +488,7 @@ ry_status ry_sim_list_edit(ry_sim *sim, size_t n_old, size_t nspawn, const uint8
 #pragma omp parallel for schedule(static)
     for (long long aa = 0; aa < nn; ++aa) {
         const size_t a = (size_t)aa;
-        size_t c = add[a];
-        if (a < first)
-            for (size_t q = nl->offset[oldof[a]]; q < nl->offset[oldof[a] + 1]; ++q)
-                c += newidx[nl->j[q]] != SIZE_MAX;
-        off[a + 1] = c;
+        off[a + 1] = add[a] + (a < first ? row_survivors(nl, oldof[a], newidx, NULL) : 0);
     }
     off[0] = 0;
     size_t maxrow = 0;
@@ -497,13 +500,8 @@ ry_status ry_sim_list_edit(ry_sim *sim, size_t n_old, size_t nspawn, const uint8
     nj = malloc(cap_j * sizeof *nj);
     if (!nj) goto nomem;
 #pragma omp parallel for schedule(static)
-    for (long long aa = 0; aa < nn; ++aa) {
-        const size_t a = (size_t)aa;
-        size_t p = off[a];
-        if (a < first)
-            for (size_t q = nl->offset[oldof[a]]; q < nl->offset[oldof[a] + 1]; ++q)
-                if (newidx[nl->j[q]] != SIZE_MAX) nj[p++] = (uint32_t)newidx[nl->j[q]];
-    }
+    for (long long aa = 0; aa < nn; ++aa)
+        if ((size_t)aa < first) row_survivors(nl, oldof[aa], newidx, nj + off[aa]);
     /* the hits in the order found, k ascending and then i ascending: row i (old) takes the new
      * particles ascending after its old entries, row k its hits */
     for (size_t h = 0; h < nhits; ++h) {

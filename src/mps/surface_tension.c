@@ -181,8 +181,7 @@ static inline double pair_sep(const ry_sim *sim, size_t i, uint32_t j, double dx
     const int dim = sim->dim;
     dx[0] = dx[1] = dx[2] = 0;
     for (int d = 0; d < dim; ++d) dx[d] = sim->ps.f[RY_F_X + d][j] - sim->ps.f[RY_F_X + d][i];
-    if (sim->box.periodic[0] | sim->box.periodic[1] | sim->box.periodic[2])
-        ry_box_min_image(&sim->box, dx);
+    ry_box_min_image(&sim->box, dx);
     for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
     return r2;
 }

@@ -372,16 +372,11 @@ static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int 
                 out[cnt] = j;
                 cnt += (ry_nb_r2(g, dim, x, i, j) < r2max) & (j != i);
             }
-        else /* the same distance without the periodic correction (0 in open directions) */
+        else
             for (size_t p = start[c]; p < end; ++p) {
                 const uint32_t j = order[p];
-                double r2 = 0.0;
-                for (int d = 0; d < dim; ++d) {
-                    const double dx = x[d][i] - x[d][j];
-                    r2 += dx * dx;
-                }
                 out[cnt] = j;
-                cnt += (r2 < r2max) & (j != i);
+                cnt += (ry_nb_r2_open(dim, x, i, j) < r2max) & (j != i);
             }
     }
     if (cnt > 64) {

@@ -53,8 +53,8 @@
 /* The walls' pressure extrapolation (wall_extrapolate) as lists built once per step: each wall or
  * inlet particle with a mobile neighbour within the kernel (w, nw of them), those neighbours (j,
  * from off[k] to off[k + 1]), W_wf and rho_f g . x_wf. An iteration of the solve then reads 20
- * bytes per entry instead of the pair cache's 64 per listed pair, and skips the walls beyond the
- * fluid's reach (pairs beyond the kernel add exact zeros). */
+ * bytes per entry instead of the pair cache's 64, and skips the walls beyond the fluid's
+ * reach. */
 typedef struct wall_map {
     size_t nw, cap_n, cap_e;
     uint32_t *w, *j;
@@ -64,9 +64,7 @@ typedef struct wall_map {
 
 /* The pairs of the pressure solve's iterations (grad_list_build): for each mobile particle i
  * (from off[i] to off[i + 1]) its neighbours j with a non-zero kernel gradient and grad_i W_ij
- * (3 per entry). The neighbour list reaches beyond the kernel (its skin, a surface-tension
- * radius), and those pairs add exact zeros; an iteration reads 28 bytes per kept pair instead
- * of the cache's 64 per listed one. */
+ * (3 per entry): an iteration reads 28 bytes per pair instead of the cache's 64. */
 typedef struct grad_list {
     size_t cap_n, cap_e;
     size_t *off;
