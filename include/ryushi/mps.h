@@ -9,7 +9,8 @@ extern const ry_scheme_type ry_scheme_mps;
 
 /* Probes of series.csv for MPS and droplets (listed by `ryushi probes`). */
 extern const ry_probe ry_probe_width_x, ry_probe_drop_pressure, ry_probe_ppe_iterations,
-    ry_probe_contact_angle, ry_probe_width_x_second, ry_probe_pressure_jump_second;
+    ry_probe_contact_angle, ry_probe_contact_angle_second, ry_probe_width_x_second,
+    ry_probe_pressure_jump_second;
 
 /* Contact angle [degrees] of a sessile drop shaped as a circular cap (2D: a circular segment
  * of area A; 3D: a spherical cap of volume V) of height h on a flat wall: 2D, theta solves

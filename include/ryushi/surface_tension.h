@@ -36,10 +36,11 @@ typedef struct ry_surface_tension {
      * delta function's normalisation) [m] */
     double delta_sum;
     double g_top; /* that sum for the top layer alone */
-    /* Wetting, potential model: fluid-wall pairs with C wall_ratio, wall_ratio =
-     * (1 + cos theta)/2 for the contact angle theta (the Dupre work of adhesion
-     * sigma (1 + cos theta) against the work of cohesion 2 sigma); 0: walls do not attract. */
-    double wall_ratio;
+    /* Wetting, potential model: the pairs of a fluid particle of material m and a wall with
+     * C wall_ratio[m], wall_ratio[m] = (1 + cos theta_m)/2 for that liquid's contact angle
+     * theta_m (the Dupre work of adhesion sigma (1 + cos theta) against the work of cohesion
+     * 2 sigma); 0: walls do not attract. */
+    double wall_ratio[256];
     /* Two liquids, potential model: pairs of different fluid materials with C cross_ratio,
      * cross_ratio = 1 - sigma_ab / (2 sigma) (1: the liquids mix). */
     double cross_ratio;

@@ -21,6 +21,9 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
 
 /* The MPS scheme: hydrostatic column, oscillating drops, drop at rest (validate_mps.c). */
 int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failures);
+/* Sessile drops only (part of ry_cli_validate_mps): CSF with a contact angle and two liquids
+ * with an angle per liquid. */
+int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *failures);
 /* Prints a validation check's line (PASS or FAIL) and counts a failure. */
 void ry_cli_check(const char *what, int ok, int *failures);
 /* The 2D embolization tank: droplet, volumes, Tate's law (validate_embolization.c). */

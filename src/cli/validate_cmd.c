@@ -433,10 +433,11 @@ int ry_cli_validate(int argc, char **argv) {
         strcmp(what, "channel") != 0 && strcmp(what, "cantilever") != 0 &&
         strcmp(what, "plate") != 0 && strcmp(what, "buckling") != 0 && strcmp(what, "mps") != 0 &&
         strcmp(what, "rheology") != 0 && strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 &&
-        strcmp(what, "eye") != 0 && strcmp(what, "embolization") != 0) {
+        strcmp(what, "eye") != 0 && strcmp(what, "embolization") != 0 &&
+        strcmp(what, "wetting") != 0) {
         fprintf(stderr,
                 "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
-                "buckling, mps, rheology, iisph, rt, eye, embolization or all, got '%s'\n",
+                "buckling, mps, rheology, iisph, rt, eye, embolization, wetting or all, got '%s'\n",
                 what);
         return 2;
     }
@@ -455,6 +456,7 @@ int ry_cli_validate(int argc, char **argv) {
     if (all || strcmp(what, "iisph") == 0)
         ry_cli_validate_iisph(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "rt") == 0) ry_cli_validate_rt(v.root, v.out, v.quick, &v.failures);
+    if (strcmp(what, "wetting") == 0) ry_cli_validate_wetting(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "eye") == 0) ry_cli_validate_eye(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "embolization") == 0)
         ry_cli_validate_embolization(v.root, v.out, v.quick, &v.failures);

@@ -439,6 +439,50 @@ static void validate_dam_break_mps(const char *root, const char *out, int *failu
     ry_table_free(&ref);
 }
 
+/* One sessile-drop run: the mean of the probe `col` over 40-60 ms against the angle `expect`,
+ * within 5 degrees; the angle against time into plot. */
+static void sessile_run(const char *root, const char *out, const char *case_rel, const char *sub,
+                        int nsets, const char *const *sets, const char *col, const char *label,
+                        double expect, ry_plot *plot, int *failures) {
+    ry_error err = {0};
+    ry_table s;
+    ry_sim sim;
+    ry_run_stats stats;
+    if (run_mps(root, out, case_rel, sub, nsets, sets, &s, &sim, &stats, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+        return;
+    }
+    const int ct = ry_table_col(&s, "t"), ca = ry_table_col(&s, col);
+    double sum = 0, lo = INFINITY, hi = -INFINITY;
+    int cnt = 0;
+    double *t = calloc(s.nrows, sizeof *t), *a = calloc(s.nrows, sizeof *a);
+    size_t m = 0;
+    for (size_t r = 0; r < s.nrows && ct >= 0 && ca >= 0; ++r) {
+        const double tr = ry_table_at(&s, r, ct), ar = ry_table_at(&s, r, ca);
+        if (t && a && isfinite(ar)) {
+            t[m] = 1e3 * tr;
+            a[m++] = ar;
+        }
+        if (tr < 0.04) continue;
+        sum += ar;
+        lo = fmin(lo, ar);
+        hi = fmax(hi, ar);
+        ++cnt;
+    }
+    const double mean = cnt ? sum / cnt : NAN;
+    printf("  %-36s settles at %6.1f (%.1f-%.1f over 40-60 ms), %ld steps, %.1f s\n", label, mean,
+           lo, hi, stats.steps, stats.wall_s);
+    if (plot && t && a) ry_plot_series(plot, 0, label, m, t, a, ry_plot_style_line(), &err);
+    char what[128];
+    snprintf(what, sizeof what, "sessile drop %s: within 5 degrees of %g", label, expect);
+    ry_cli_check(what, fabs(mean - expect) <= 5.0, failures);
+    free(t);
+    free(a);
+    ry_sim_free(&sim);
+    ry_table_free(&s);
+}
+
 /* Sessile drops (CSF with a contact angle, cases/mps_sessile_drop.yaml): the mean of the
  * contact_angle probe over 40-60 ms against the prescribed angle, within 5 degrees; the angle
  * against time into mps_sessile.png. The full run adds 150 degrees from a tall block (the
@@ -475,47 +519,47 @@ static void validate_sessile(const char *root, const char *out, int quick, int *
             sets[nsets++] = tall[1];
         }
         if (runs[k].fine) sets[nsets++] = "spacing=2.5e-5";
-        ry_table s;
-        ry_sim sim;
-        ry_run_stats stats;
-        if (run_mps(root, out, "cases/mps_sessile_drop.yaml", sub, nsets, sets, &s, &sim, &stats,
-                    &err) != RY_OK) {
-            fprintf(stderr, "ryushi: validate: %s\n", err.msg);
-            ++*failures;
-            continue;
-        }
-        const int ct = ry_table_col(&s, "t"), ca = ry_table_col(&s, "contact_angle");
-        double sum = 0, lo = INFINITY, hi = -INFINITY;
-        int cnt = 0;
-        double *t = calloc(s.nrows, sizeof *t), *a = calloc(s.nrows, sizeof *a);
-        size_t m = 0;
-        for (size_t r = 0; r < s.nrows && ct >= 0 && ca >= 0; ++r) {
-            const double tr = ry_table_at(&s, r, ct), ar = ry_table_at(&s, r, ca);
-            if (t && a && isfinite(ar)) {
-                t[m] = 1e3 * tr;
-                a[m++] = ar;
-            }
-            if (tr < 0.04) continue;
-            sum += ar;
-            lo = fmin(lo, ar);
-            hi = fmax(hi, ar);
-            ++cnt;
-        }
-        const double mean = cnt ? sum / cnt : NAN;
-        printf("  %-28s settles at %6.1f (%.1f-%.1f over 40-60 ms), %ld steps, %.1f s\n", label,
-               mean, lo, hi, stats.steps, stats.wall_s);
-        if (plot && t && a) ry_plot_series(plot, 0, label, m, t, a, ry_plot_style_line(), &err);
-        char what[112];
-        snprintf(what, sizeof what, "sessile drop %s: within 5 degrees", label);
-        ry_cli_check(what, fabs(mean - theta) <= 5.0, failures);
-        free(t);
-        free(a);
-        ry_sim_free(&sim);
-        ry_table_free(&s);
+        sessile_run(root, out, "cases/mps_sessile_drop.yaml", sub, nsets, sets, "contact_angle",
+                    label, theta, plot, failures);
     }
     if (plot) {
         ry_plot_legend(plot, 0, RY_PLOT_LEGEND_SE, &err);
         write_plot(plot, out, "mps_sessile.png", failures);
+        ry_plot_free(plot);
+    }
+}
+
+/* Two-liquid sessile drops (potential model, a contact angle per liquid,
+ * cases/mps_two_liquid_sessile.yaml): the mean of contact_angle_second over 40-60 ms against
+ * Young's angle cos theta_ab = (cos theta_b - cos theta_a) / 2 (sigma = sigma_ab / 2), within
+ * 5 degrees; into mps_sessile_two.png. The quick run takes 60 and 90 degrees. */
+static void validate_sessile_two(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    static const double runs[][2] = {{90, 0}, {90, 90},  {0, 0},     {137.06, 0},
+                                     {0, 90}, {90, 180}, {0, 137.06}};
+    const int nruns = quick ? 2 : 7;
+    ry_plot *plot = NULL;
+    if (ry_plot_new(&plot, 1, 1, 900, 600, &err) != RY_OK) plot = NULL;
+    if (plot)
+        ry_plot_panel(plot, 0, "Two-liquid sessile drop, potential model, angle per liquid",
+                      "t (ms)", "contact angle through the drop (degrees)", &err);
+    printf("MPS two-liquid sessile drop, potential model, a contact angle per liquid "
+           "(cases/mps_two_liquid_sessile.yaml)\n");
+    for (int k = 0; k < nruns; ++k) {
+        const double ta = runs[k][0], tb = runs[k][1], d2r = 3.14159265358979323846 / 180.0;
+        const double expect = acos(0.5 * (cos(tb * d2r) - cos(ta * d2r))) / d2r;
+        char sa[64], sb[64], sub[64], label[80];
+        snprintf(sa, sizeof sa, "materials[0].contact_angle=%g", ta);
+        snprintf(sb, sizeof sb, "materials[1].contact_angle=%g", tb);
+        snprintf(sub, sizeof sub, "mps_sessile_two_%g_%g", ta, tb);
+        snprintf(label, sizeof label, "%.0f (a %g, b %g)", expect, ta, tb);
+        const char *sets[] = {sa, sb, "output.vtk=false"};
+        sessile_run(root, out, "cases/mps_two_liquid_sessile.yaml", sub, 3, sets,
+                    "contact_angle_second", label, expect, plot, failures);
+    }
+    if (plot) {
+        ry_plot_legend(plot, 0, RY_PLOT_LEGEND_SE, &err);
+        write_plot(plot, out, "mps_sessile_two.png", failures);
         ry_plot_free(plot);
     }
 }
@@ -525,6 +569,11 @@ int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failu
     validate_dam_break_mps(root, out, failures);
     validate_drops(root, out, quick, failures);
     validate_rest(root, out, failures);
+    return ry_cli_validate_wetting(root, out, quick, failures);
+}
+
+int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *failures) {
     validate_sessile(root, out, quick, failures);
+    validate_sessile_two(root, out, quick, failures);
     return 0;
 }

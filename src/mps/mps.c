@@ -119,18 +119,31 @@ void ry_mps_lattice(int dim, double l0, double re, double *n0, double *lambda) {
 }
 
 /* Wetting (docs/mps.md): surface_tension.contact_angle [degrees]. The potential model takes it
- * as its fluid-wall coefficient, CSF as the normal at the contact line. */
-static ry_status contact_angle(ry_case *c, mps *M, ry_error *err) {
-    char where[256];
-    const char *key = "surface_tension.contact_angle";
+ * as its fluid-wall coefficient, CSF as the normal at the contact line. With the potential
+ * model, materials[k].contact_angle sets the angle of liquid k alone (the others keep
+ * surface_tension.contact_angle, or no attraction). */
+static ry_status contact_angle(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
+    char where[256], key[64] = "surface_tension.contact_angle";
     RY_CHECK(err, M->st.model != RY_ST_NONE || !ry_case_has(c, key), RY_ERR_INPUT,
              "%s: key '%s': needs a surface_tension.model",
              ry_case_where(c, key, where, sizeof where), key);
-    if (!ry_case_has(c, key)) return RY_OK;
-    double theta;
-    RY_TRY(ry_case_double(c, key, NULL, 0.0, 180.0, &theta, err));
-    M->st.wall_ratio = 0.5 * (1.0 + cos(theta * RY_PI / 180.0));
-    if (M->st.model == RY_ST_CSF) M->st.contact_angle = theta * RY_PI / 180.0;
+    double theta = NAN;
+    if (ry_case_has(c, key)) {
+        RY_TRY(ry_case_double(c, key, NULL, 0.0, 180.0, &theta, err));
+        if (M->st.model == RY_ST_CSF) M->st.contact_angle = theta * RY_PI / 180.0;
+    }
+    for (int m = 0; m < sim->nmat; ++m) {
+        double th = theta;
+        snprintf(key, sizeof key, "materials[%d].contact_angle", m);
+        if (ry_case_has(c, key)) {
+            RY_CHECK(err, M->st.model == RY_ST_POTENTIAL, RY_ERR_INPUT,
+                     "%s: key '%s': a contact angle per liquid needs surface_tension.model "
+                     "potential (CSF takes one angle, surface_tension.contact_angle)",
+                     ry_case_where(c, key, where, sizeof where), key);
+            RY_TRY(ry_case_double(c, key, NULL, 0.0, 180.0, &th, err));
+        }
+        if (!isnan(th)) M->st.wall_ratio[m] = 0.5 * (1.0 + cos(th * RY_PI / 180.0));
+    }
     return RY_OK;
 }
 
@@ -244,7 +257,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     M->re_l *= l0;
     RY_TRY(ry_st_read(&M->st, c, sim->dim, l0, 3.1, 6.0, err));
     M->csf_pressure = ry_st_pressure_form(&M->st);
-    RY_TRY(contact_angle(c, M, err));
+    RY_TRY(contact_angle(sim, c, M, err));
     M->re_max = fmax(fmax(M->re_g, M->re_l), M->st.model != RY_ST_NONE ? M->st.re : 0.0);
     RY_TRY(interfacial(sim, c, M, err));
     double lam_g;
@@ -1258,35 +1271,62 @@ double ry_cap_contact_angle(int dim, double h, double size) {
     return 0.5 * (lo + hi) * 180.0 / RY_PI;
 }
 
+/* Whether fluid particle i of the second material has a particle of another fluid material
+ * within 1.5 spacings: the outer layer of a drop of it in the first. */
+static int on_interface(const ry_sim *sim, size_t i) {
+    const ry_particles *ps = &sim->ps;
+    const double reach2 = 2.25 * sim->dx * sim->dx;
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const uint32_t j = sim->nl.j[q];
+        if (ps->kind[j] != RY_KIND_FLUID || ps->material[j] == ps->material[i]) continue;
+        double r2 = 0;
+        for (int d = 0; d < sim->dim; ++d) {
+            const double e = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+            r2 += e * e;
+        }
+        if (r2 < reach2) return 1;
+    }
+    return 0;
+}
+
 /* Sessile drop on a floor (walls below the fluid along the last axis, "up"): a circle (2D) or
  * sphere (3D) fitted by least squares (Kasa's algebraic fit: |x|^2 + D.x + F = 0, linear in D
- * and F) to the free-surface particles more than two spacings above the floor's surface (its
- * top wall layer plus half a spacing); the radius is that fit's plus half a spacing (the
- * surface layer sits half a spacing inside the surface), and cos theta = -h_c / R with h_c the
- * centre's height above the floor. */
-static ry_status probe_contact_angle(const ry_sim *sim, double *v, ry_error *err) {
-    (void)err;
+ * and F) to the drop's surface more than two spacings above the floor's surface (its top wall
+ * layer plus half a spacing); the radius is that fit's plus half a spacing (the surface layer
+ * sits half a spacing inside the surface), and cos theta = -h_c / R with h_c the centre's
+ * height above the floor. mat < 0: the fluid's free-surface particles; mat >= 0: a drop of
+ * that material in another liquid, its particles beside the other (on_interface). */
+static void contact_angle_of(const ry_sim *sim, int mat, double *v) {
     const ry_particles *ps = &sim->ps;
     const int dim = sim->dim, up = dim - 1, fs = ry_particles_field(ps, "free_surface");
     *v = NAN;
-    if (fs < 0) return RY_OK;
-    double top_wall = -INFINITY;
-    for (size_t i = 0; i < ps->n; ++i)
-        if (ps->kind[i] == RY_KIND_WALL) top_wall = fmax(top_wall, ps->f[RY_F_X + up][i]);
-    if (!isfinite(top_wall)) return RY_OK;
-    const double floor = top_wall + 0.5 * sim->dx;
-    /* Only the surface within 2 equivalent radii of the fluid's centroid (not a particle thrown
+    if (fs < 0 && mat < 0) return;
+    /* Only the surface within 2 equivalent radii of the drop's centroid (not a particle thrown
      * off). */
     double cen[3];
-    const size_t nf = fluid_centroid(sim, cen);
+    const size_t nf = fluid_centroid_of(sim, mat, cen);
+    if (nf == 0 || (mat >= 0 && sim->nl.offset == NULL)) return;
     const double vol = (double)nf * pow(sim->dx, dim);
     const double reach = 2 * (dim == 2 ? sqrt(vol / RY_PI) : cbrt(3 * vol / (4 * RY_PI)));
+    /* The floor: the top wall layer below the centroid and within reach of it sideways (not
+     * the side walls of a tank). */
+    double top_wall = -INFINITY;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_WALL || ps->f[RY_F_X + up][i] > cen[up]) continue;
+        double e2 = 0;
+        for (int d = 0; d < up; ++d) e2 += pow(ps->f[RY_F_X + d][i] - cen[d], 2);
+        if (e2 < reach * reach) top_wall = fmax(top_wall, ps->f[RY_F_X + up][i]);
+    }
+    if (!isfinite(top_wall)) return;
+    const double floor = top_wall + 0.5 * sim->dx;
     /* Normal equations of sum (|x|^2 + D.x + F)^2 -> min over (D, F): unknowns u = (D, F). */
     double A[4][4] = {{0}}, b[4] = {0};
     const int nu = dim + 1;
     size_t k = 0;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID || ps->f[fs][i] < 0.5) continue;
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        if (mat < 0 ? ps->f[fs][i] < 0.5 : ps->material[i] != mat || !on_interface(sim, i))
+            continue;
         if (ps->f[RY_F_X + up][i] < floor + 2 * sim->dx) continue;
         double row[4], r2 = 0, e2 = 0;
         for (int d = 0; d < dim; ++d) {
@@ -1305,7 +1345,7 @@ static ry_status probe_contact_angle(const ry_sim *sim, double *v, ry_error *err
         }
         ++k;
     }
-    if (k < (size_t)(3 * nu)) return RY_OK;
+    if (k < (size_t)(3 * nu)) return;
     /* Gaussian elimination with partial pivoting. */
     for (int c = 0; c < nu; ++c) {
         int p = c;
@@ -1319,7 +1359,7 @@ static ry_status probe_contact_angle(const ry_sim *sim, double *v, ry_error *err
         const double t = b[c];
         b[c] = b[p];
         b[p] = t;
-        if (fabs(A[c][c]) < 1e-300) return RY_OK;
+        if (fabs(A[c][c]) < 1e-300) return;
         for (int r = c + 1; r < nu; ++r) {
             const double f = A[r][c] / A[c][c];
             for (int q = c; q < nu; ++q) A[r][q] -= f * A[c][q];
@@ -1335,9 +1375,21 @@ static ry_status probe_contact_angle(const ry_sim *sim, double *v, ry_error *err
     double c2 = 0;
     for (int d = 0; d < dim; ++d) c2 += 0.25 * u[d] * u[d];
     const double R2 = c2 - u[dim];
-    if (!(R2 > 0)) return RY_OK;
+    if (!(R2 > 0)) return;
     const double R = sqrt(R2) + 0.5 * sim->dx, hc = -0.5 * u[up] - floor;
     *v = acos(fmax(-1.0, fmin(1.0, -hc / R))) * 180.0 / RY_PI;
+}
+
+static ry_status probe_contact_angle(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    contact_angle_of(sim, -1, v);
+    return RY_OK;
+}
+
+static ry_status probe_contact_angle_second(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = NAN;
+    if (sim->nmat > 1) contact_angle_of(sim, 1, v);
     return RY_OK;
 }
 
@@ -1364,6 +1416,12 @@ const ry_probe ry_probe_contact_angle = {
     "sessile drop on a floor: contact angle [degrees] of a circle (sphere) fitted to the free "
     "surface more than two spacings above the floor",
     probe_contact_angle};
+const ry_probe ry_probe_contact_angle_second = {
+    "contact_angle_second",
+    "sessile drop of the second material in the first, on a floor: contact angle [degrees] "
+    "through the drop, of a circle (sphere) fitted to its particles beside the first liquid "
+    "more than two spacings above the floor",
+    probe_contact_angle_second};
 const ry_probe ry_probe_ppe_iterations = {
     "ppe_iterations", "scheme mps: conjugate-gradient iterations of the last pressure solve",
     probe_ppe_iterations};
