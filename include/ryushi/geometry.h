@@ -49,8 +49,12 @@ struct ry_stl;
 ry_status ry_fill_stl(ry_particles *ps, const struct ry_stl *m, double dx, int layers,
                       const ry_body_style *st, size_t *added, ry_error *err);
 
-/* Reads the case's `bodies` sequence and fills them. material_names has nmat entries. */
+/* Reads the case's `bodies` sequence and fills them. material_names has nmat entries. When
+ * first_id is not NULL it receives a malloc'd array of *nbodies + 1 ids: the particles of
+ * bodies[k] have ids in [first_id[k], first_id[k + 1]) (ids are given in order and kept when a
+ * particle is removed). */
 ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,
-                                const char *const *material_names, int nmat, ry_error *err);
+                                const char *const *material_names, int nmat, int64_t **first_id,
+                                size_t *nbodies, ry_error *err);
 
 #endif

@@ -167,6 +167,10 @@ struct ry_sim {
     double gravity[3]; /* [m/s^2] */
     int nmat;
     ry_material *mat;
+    /* The case's bodies: the particles of bodies[k] have ids in
+     * [body_first_id[k], body_first_id[k + 1]) (ry_sim_body_of). */
+    size_t nbodies;
+    int64_t *body_first_id;
 
     /* time */
     double t, t_end, dt;
@@ -285,6 +289,9 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err);
  * the next search in a distributed run, with the cells alone, or without a skin. */
 ry_status ry_sim_list_edit(ry_sim *sim, size_t n_old, size_t nspawn, const uint8_t *remove,
                            ry_error *err);
+/* The index of the body (bodies[k] of the case) a particle with this id came from, or -1 (a
+ * particle made later, e.g. by an inlet). */
+int ry_sim_body_of(const ry_sim *sim, int64_t id);
 /* Whether a neighbour search has been made (a list, or the cells alone), so that a restored
  * state must rebuild it from the positions of that search. */
 static inline int ry_sim_searched(const ry_sim *sim) {

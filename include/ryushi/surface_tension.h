@@ -22,6 +22,9 @@ typedef enum ry_st_curvature_form {
     RY_ST_CURV_SURFACE
 } ry_st_curvature_form;
 
+/* Groups of walls with their own contact angles (bodies[k].contact_angle), besides the rest. */
+#define RY_ST_WALL_GROUPS 8
+
 typedef struct ry_surface_tension {
     int model;     /* ry_st_model */
     int curvature; /* ry_st_curvature_form (CSF; ry_st_setup sets the default) */
@@ -36,11 +39,14 @@ typedef struct ry_surface_tension {
      * delta function's normalisation) [m] */
     double delta_sum;
     double g_top; /* that sum for the top layer alone */
-    /* Wetting, potential model: the pairs of a fluid particle of material m and a wall with
-     * C wall_ratio[m], wall_ratio[m] = (1 + cos theta_m)/2 for that liquid's contact angle
-     * theta_m (the Dupre work of adhesion sigma (1 + cos theta) against the work of cohesion
-     * 2 sigma); 0: walls do not attract. */
-    double wall_ratio[256];
+    /* Wetting, potential model: the pairs of a fluid particle of material m and a wall of
+     * group g with C wall_ratio[g][m], wall_ratio = (1 + cos theta)/2 for that liquid's contact
+     * angle theta on those walls (the Dupre work of adhesion sigma (1 + cos theta) against the
+     * work of cohesion 2 sigma); 0: walls do not attract. Group 0 holds the walls without
+     * angles of their own; wall_group (NULL: all in group 0) gives each particle's group,
+     * indexed like the particles. */
+    double wall_ratio[RY_ST_WALL_GROUPS][256];
+    const uint8_t *wall_group;
     /* Two liquids, potential model: pairs of different fluid materials with C cross_ratio,
      * cross_ratio = 1 - sigma_ab / (2 sigma) (1: the liquids mix). */
     double cross_ratio;

@@ -269,7 +269,8 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     const char **mnames = calloc((size_t)sim->nmat + 1, sizeof *mnames);
     RY_CHECK(err, mnames != NULL, RY_ERR_NOMEM, "out of memory");
     for (int i = 0; i < sim->nmat; ++i) mnames[i] = sim->mat[i].name;
-    ry_status st = ry_geometry_from_case(&sim->ps, c, sim->dx, mnames, sim->nmat, err);
+    ry_status st = ry_geometry_from_case(&sim->ps, c, sim->dx, mnames, sim->nmat,
+                                         &sim->body_first_id, &sim->nbodies, err);
     free(mnames);
     RY_TRY(st);
     RY_TRY(ry_open_setup(sim, c, err));
@@ -337,6 +338,7 @@ void ry_sim_free(ry_sim *sim) {
     ry_nlist_free(&sim->nl);
     for (int i = 0; i < sim->nmat; ++i) free(sim->mat[i].name);
     free(sim->mat);
+    free(sim->body_first_id);
     free(sim->probes);
     ry_profiles_free(sim);
     ry_sim_snapshot_free(sim);
@@ -435,6 +437,21 @@ static size_t row_survivors(const ry_nlist *nl, size_t o, const size_t *newidx, 
  * sorted); a new particle takes its position as its reference and pairs with every particle
  * within reach of it, found by a scan of all of them (a few new particles against a search of
  * every row). */
+int ry_sim_body_of(const ry_sim *sim, int64_t id) {
+    const size_t n = sim->nbodies;
+    if (!sim->body_first_id || n == 0 || id < sim->body_first_id[0] || id >= sim->body_first_id[n])
+        return -1;
+    size_t lo = 0, hi = n; /* first_id[lo] <= id < first_id[hi] */
+    while (hi - lo > 1) {
+        const size_t mid = (lo + hi) / 2;
+        if (sim->body_first_id[mid] <= id)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return (int)lo;
+}
+
 ry_status ry_sim_list_edit(ry_sim *sim, size_t n_old, size_t nspawn, const uint8_t *remove,
                            ry_error *err) {
     ry_particles *ps = &sim->ps;

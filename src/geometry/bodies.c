@@ -254,19 +254,27 @@ static ry_status check_overlaps(ry_particles *ps, ry_case *c, const uint32_t *bo
 }
 
 ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,
-                                const char *const *material_names, int nmat, ry_error *err) {
+                                const char *const *material_names, int nmat, int64_t **first_id,
+                                size_t *nbodies, ry_error *err) {
     size_t n;
     RY_TRY(ry_case_count(c, "bodies", &n, err));
     RY_CHECK(err, n > 0, RY_ERR_INPUT, "%s: key 'bodies': at least one body is required",
              ry_case_name(c));
     size_t *start = malloc((n + 1) * sizeof *start);
-    RY_CHECK(err, start != NULL, RY_ERR_NOMEM, "out of memory");
+    int64_t *ids = malloc((n + 1) * sizeof *ids);
+    if (!start || !ids) {
+        free(start);
+        free(ids);
+        return ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    }
     ry_status st = RY_OK;
     for (size_t i = 0; i < n && st == RY_OK; ++i) {
         start[i] = ps->n;
+        ids[i] = ps->next_id;
         st = read_body(ps, c, i, dx, material_names, nmat, err);
     }
     start[n] = ps->n;
+    ids[n] = ps->next_id;
     uint32_t *body = st == RY_OK ? malloc((ps->n ? ps->n : 1) * sizeof *body) : NULL;
     uint8_t *skip = st == RY_OK ? calloc(n, 1) : NULL;
     if (st == RY_OK && (!body || !skip)) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
@@ -285,5 +293,11 @@ ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,
     free(skip);
     free(body);
     free(start);
+    if (st == RY_OK && first_id) {
+        *first_id = ids;
+        *nbodies = n;
+    } else {
+        free(ids);
+    }
     return st;
 }

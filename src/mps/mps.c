@@ -55,7 +55,9 @@ typedef struct mps {
     double coll_r, coll_e; /* artificial repulsion: distance, restitution */
     int dilate;            /* number-density source also for n* < n0 (else compression only) */
     ry_surface_tension st;
-    int surf_head;             /* surface particles hold the head of half a spacing */
+    uint8_t *body_group; /* wetting: each body's wall group (bodies[k].contact_angle), or NULL */
+    uint8_t *wgroup;     /* with it: each particle's wall group, set every step */
+    int surf_head;       /* surface particles hold the head of half a spacing */
     int f_nd, f_surf, f_vs[3]; /* fields */
     int rheo_gnf;              /* some material's viscosity follows the shear rate */
     int rheo_ob;               /* some material is visco-elastic */
@@ -118,6 +120,61 @@ void ry_mps_lattice(int dim, double l0, double re, double *n0, double *lambda) {
     *lambda = s2 / s;
 }
 
+/* Wetting of one wall body (docs/mps.md, "Wetting with two liquids"), potential model:
+ * bodies[k].contact_angle, a number for every liquid or a mapping from material names to
+ * angles (liquids not named keep their angle on the other walls). Such a body's walls form a
+ * group of their own (M->body_group). */
+static ry_status body_angles(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
+    char where[256], key[160];
+    int groups = 1;
+    for (size_t k = 0; k < sim->nbodies; ++k) {
+        snprintf(key, sizeof key, "bodies[%zu].contact_angle", k);
+        if (!ry_case_has(c, key)) continue;
+        RY_CHECK(err, M->st.model == RY_ST_POTENTIAL, RY_ERR_INPUT,
+                 "%s: key '%s': a contact angle per wall body needs surface_tension.model "
+                 "potential",
+                 ry_case_where(c, key, where, sizeof where), key);
+        RY_CHECK(err, groups < RY_ST_WALL_GROUPS, RY_ERR_INPUT,
+                 "%s: key '%s': at most %d wall bodies with contact angles of their own",
+                 ry_case_where(c, key, where, sizeof where), key, RY_ST_WALL_GROUPS - 1);
+        size_t walls = 0, others = 0;
+        for (size_t i = 0; i < sim->ps.n; ++i)
+            if (ry_sim_body_of(sim, sim->ps.id[i]) == (int)k)
+                ++*(sim->ps.kind[i] == RY_KIND_WALL ? &walls : &others);
+        RY_CHECK(err, walls > 0 && others == 0, RY_ERR_INPUT,
+                 "%s: key '%s': applies to a body of kind wall",
+                 ry_case_where(c, key, where, sizeof where), key);
+        if (!M->body_group) {
+            M->body_group = calloc(sim->nbodies, 1);
+            RY_CHECK(err, M->body_group != NULL, RY_ERR_NOMEM, "out of memory");
+        }
+        const int g = groups++;
+        M->body_group[k] = (uint8_t)g;
+        int named = 0;
+        for (int m = 0; m < sim->nmat; ++m) {
+            char mk[224];
+            snprintf(mk, sizeof mk, "%s.%s", key, sim->mat[m].name);
+            double r = M->st.wall_ratio[0][m];
+            if (ry_case_has(c, mk)) {
+                double th;
+                RY_TRY(ry_case_double(c, mk, NULL, 0.0, 180.0, &th, err));
+                r = 0.5 * (1.0 + cos(th * RY_PI / 180.0));
+                ++named;
+            }
+            M->st.wall_ratio[g][m] = r;
+        }
+        if (named) continue;
+        double th;
+        RY_CHECK(err, ry_case_double(c, key, NULL, 0.0, 180.0, &th, err) == RY_OK, RY_ERR_INPUT,
+                 "%s: key '%s': expected an angle in degrees (0..180), or a mapping from material "
+                 "names to angles",
+                 ry_case_where(c, key, where, sizeof where), key);
+        for (int m = 0; m < sim->nmat; ++m)
+            M->st.wall_ratio[g][m] = 0.5 * (1.0 + cos(th * RY_PI / 180.0));
+    }
+    return RY_OK;
+}
+
 /* Wetting (docs/mps.md): surface_tension.contact_angle [degrees]. The potential model takes it
  * as its fluid-wall coefficient, CSF as the normal at the contact line. With the potential
  * model, materials[k].contact_angle sets the angle of liquid k alone (the others keep
@@ -142,9 +199,9 @@ static ry_status contact_angle(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
                      ry_case_where(c, key, where, sizeof where), key);
             RY_TRY(ry_case_double(c, key, NULL, 0.0, 180.0, &th, err));
         }
-        if (!isnan(th)) M->st.wall_ratio[m] = 0.5 * (1.0 + cos(th * RY_PI / 180.0));
+        if (!isnan(th)) M->st.wall_ratio[0][m] = 0.5 * (1.0 + cos(th * RY_PI / 180.0));
     }
-    return RY_OK;
+    return body_angles(sim, c, M, err);
 }
 
 /* Two liquids: surface_tension.interfacial_sigma sigma_ab. Potential model: by the Dupre
@@ -309,6 +366,8 @@ static void mps_free(void *state) {
     free(M->pr);
     free(M->gend);
     free(M->lend);
+    free(M->body_group);
+    free(M->wgroup);
     ry_colour_free(&M->colour);
     ry_pair_cache_free(&M->pc);
     free(M);
@@ -345,9 +404,14 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         wv = realloc(M->wd, c * sizeof *wv);
         if (wv) M->wd = wv;
     }
+    uint8_t *wg = M->wgroup;
+    if (M->body_group) {
+        wg = realloc(M->wgroup, c * sizeof *wg);
+        if (wg) M->wgroup = wg;
+    }
     RY_CHECK(err,
              u && r && b && x && pd && o && t && ge && le && (vg || !M->rheo_ob) &&
-                 (wv || M->wall_mode != WALLV_MIRRORED),
+                 (wv || M->wall_mode != WALLV_MIRRORED) && (wg || !M->body_group),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
@@ -1013,6 +1077,13 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     RY_TRY(scratch(M, ps->n, err));
     RY_TRY(pairs_build(sim, M, err));
     size_t n = ps->n;
+    if (M->body_group) {
+        for (size_t i = 0; i < n; ++i) {
+            const int b = ps->kind[i] == RY_KIND_WALL ? ry_sim_body_of(sim, ps->id[i]) : -1;
+            M->wgroup[i] = b >= 0 ? M->body_group[b] : 0;
+        }
+        M->st.wall_group = M->wgroup;
+    }
     double *a[3];
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
     for (size_t i = 0; i < n; ++i)

@@ -83,7 +83,8 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     st->l0 = l0;
     st->re = re;
     st->C = ry_st_potential_coefficient(dim, l0, re, sigma);
-    for (int m = 0; m < 256; ++m) st->wall_ratio[m] = 0.0;
+    memset(st->wall_ratio, 0, sizeof st->wall_ratio);
+    st->wall_group = NULL;
     st->cross_ratio = 1.0;
     st->contact_angle = NAN;
     st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
@@ -189,14 +190,15 @@ static inline double pair_sep(const ry_sim *sim, size_t i, uint32_t j, double dx
 /* The pair (i, j)'s coefficient in st_sums, relative to C for the potential model; for CSF
  * whether j counts in the colour function (1 or 0). Inflow buffer particles are fluid about to
  * enter; walls count in CSF as liquid where a contact angle is set, and attract in the
- * potential model with the fluid's wall_ratio; two different liquids attract with cross_ratio. */
+ * potential model with the wall_ratio of the wall's group and the fluid's material; two different
+ * liquids attract with cross_ratio. */
 static double pair_coefficient(const ry_surface_tension *st, const ry_particles *ps, size_t i,
                                uint32_t j, int csf) {
     if (ps->kind[j] == RY_KIND_FLUID || ps->kind[j] == RY_KIND_INLET)
         return !csf && ps->material[j] != ps->material[i] ? st->cross_ratio : 1.0;
     if (ps->kind[j] != RY_KIND_WALL) return 0.0;
     if (csf) return isnan(st->contact_angle) ? 0.0 : 1.0;
-    return st->wall_ratio[ps->material[i]];
+    return st->wall_ratio[st->wall_group ? st->wall_group[j] : 0][ps->material[i]];
 }
 
 /* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai

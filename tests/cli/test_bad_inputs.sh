@@ -39,6 +39,7 @@ case_ yaml_directive 2 ":2: YAML directives (lines starting with '%') are not su
 case_ alias 2 ":2: anchors and aliases are not supported"
 case_ contact_angle_without_model 2 ":7: key 'surface_tension.contact_angle': needs a surface_tension.model"
 case_ contact_angle_per_liquid_csf 2 ":6: key 'materials[0].contact_angle': a contact angle per liquid needs surface_tension.model potential (CSF takes one angle, surface_tension.contact_angle)"
+case_ contact_angle_fluid_body 2 ":8: key 'bodies[0].contact_angle': applies to a body of kind wall"
 case_ iisph_surface_threshold_potential 2 ":9: key 'surface_tension.surface_threshold': applies to model csf with csf_form: pressure only"
 case_ iisph_repulsion_out_of_range 2 ":7: key 'scheme.repulsion.distance': expected a number in [0, 1], got '2'"
 case_ interfacial_sigma_one_material 2 ":9: key 'surface_tension.interfacial_sigma': needs two fluid materials"

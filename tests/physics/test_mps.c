@@ -208,6 +208,31 @@ static void two_liquid_sessile(double theta_a, double theta_b, double expect) {
     ry_table_free(&s);
 }
 
+/* A contact angle per wall body (bodies[k].contact_angle, a mapping from liquids to angles) on
+ * the tank of the two-liquid sessile drop, its only wall body, acts as the same angles per
+ * liquid (materials[k].contact_angle): the series agree to the last digit over 10 ms. */
+static void test_wall_body_angles(void **state) {
+    (void)state;
+    const char *mats[] = {"spacing=1e-4", "time.end=0.01", "materials[0].contact_angle=90",
+                          "materials[1].contact_angle=0"};
+    const char *body[] = {"spacing=1e-4", "time.end=0.01", "bodies[2].contact_angle.a=90",
+                          "bodies[2].contact_angle.b=0"};
+    ry_table s1, s2;
+    run("cases/mps_two_liquid_sessile.yaml", "angles_materials", 4, mats, &s1, NULL);
+    run("cases/mps_two_liquid_sessile.yaml", "angles_body", 4, body, &s2, NULL);
+    const int c1 = ry_table_col(&s1, "contact_angle_second"),
+              c2 = ry_table_col(&s2, "contact_angle_second");
+    assert_true(c1 >= 0 && c2 >= 0 && s1.nrows == s2.nrows && s1.nrows > 5);
+    for (size_t r = 0; r < s1.nrows; ++r) {
+        const double a1 = ry_table_at(&s1, r, c1), a2 = ry_table_at(&s2, r, c2);
+        assert_true((isnan(a1) && isnan(a2)) || a1 == a2);
+    }
+    printf("wall body angles: the same contact angles as per liquid at %zu outputs (last %.2f)\n",
+           s1.nrows, ry_table_at(&s1, s1.nrows - 1, c1));
+    ry_table_free(&s1);
+    ry_table_free(&s2);
+}
+
 static void test_two_liquid_sessile_60(void **state) {
     (void)state;
     two_liquid_sessile(90, 0, 60);
@@ -375,6 +400,7 @@ int main(void) {
         cmocka_unit_test(test_sessile_150),
         cmocka_unit_test(test_two_liquid_sessile_60),
         cmocka_unit_test(test_two_liquid_sessile_90),
+        cmocka_unit_test(test_wall_body_angles),
         cmocka_unit_test(test_catheter_inflow),
         cmocka_unit_test(test_overflow),
         cmocka_unit_test(test_two_liquid_drop),
