@@ -475,7 +475,7 @@ static void sessile_run(const char *root, const char *out, const char *case_rel,
            lo, hi, stats.steps, stats.wall_s);
     if (plot && t && a) ry_plot_series(plot, 0, label, m, t, a, ry_plot_style_line(), &err);
     char what[128];
-    snprintf(what, sizeof what, "sessile drop %s: within 5 degrees of %g", label, expect);
+    snprintf(what, sizeof what, "sessile drop %s: within 5 degrees of %.0f", label, expect);
     ry_cli_check(what, fabs(mean - expect) <= 5.0, failures);
     free(t);
     free(a);
