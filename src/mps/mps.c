@@ -120,6 +120,12 @@ void ry_mps_lattice(int dim, double l0, double re, double *n0, double *lambda) {
     *lambda = s2 / s;
 }
 
+/* The potential model's fluid-wall coefficient for a contact angle theta [degrees], relative to
+ * C: (1 + cos theta)/2, the Dupre work of adhesion against the work of cohesion. */
+static double wall_ratio_of(double theta) {
+    return 0.5 * (1.0 + cos(theta * RY_PI / 180.0));
+}
+
 /* Wetting of one wall body (docs/mps.md, "Wetting with two liquids"), potential model:
  * bodies[k].contact_angle, a number for every liquid or a mapping from material names to
  * angles (liquids not named keep their angle on the other walls). Such a body's walls form a
@@ -158,7 +164,7 @@ static ry_status body_angles(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
             if (ry_case_has(c, mk)) {
                 double th;
                 RY_TRY(ry_case_double(c, mk, NULL, 0.0, 180.0, &th, err));
-                r = 0.5 * (1.0 + cos(th * RY_PI / 180.0));
+                r = wall_ratio_of(th);
                 ++named;
             }
             M->st.wall_ratio[g][m] = r;
@@ -169,8 +175,7 @@ static ry_status body_angles(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
                  "%s: key '%s': expected an angle in degrees (0..180), or a mapping from material "
                  "names to angles",
                  ry_case_where(c, key, where, sizeof where), key);
-        for (int m = 0; m < sim->nmat; ++m)
-            M->st.wall_ratio[g][m] = 0.5 * (1.0 + cos(th * RY_PI / 180.0));
+        for (int m = 0; m < sim->nmat; ++m) M->st.wall_ratio[g][m] = wall_ratio_of(th);
     }
     return RY_OK;
 }
@@ -199,7 +204,7 @@ static ry_status contact_angle(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
                      ry_case_where(c, key, where, sizeof where), key);
             RY_TRY(ry_case_double(c, key, NULL, 0.0, 180.0, &th, err));
         }
-        if (!isnan(th)) M->st.wall_ratio[0][m] = 0.5 * (1.0 + cos(th * RY_PI / 180.0));
+        if (!isnan(th)) M->st.wall_ratio[0][m] = wall_ratio_of(th);
     }
     return body_angles(sim, c, M, err);
 }
@@ -1350,11 +1355,10 @@ static int on_interface(const ry_sim *sim, size_t i) {
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
         const uint32_t j = sim->nl.j[q];
         if (ps->kind[j] != RY_KIND_FLUID || ps->material[j] == ps->material[i]) continue;
-        double r2 = 0;
-        for (int d = 0; d < sim->dim; ++d) {
-            const double e = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
-            r2 += e * e;
-        }
+        double e[3] = {0, 0, 0}, r2 = 0;
+        for (int d = 0; d < sim->dim; ++d) e[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+        ry_box_min_image(&sim->box, e);
+        for (int d = 0; d < sim->dim; ++d) r2 += e[d] * e[d];
         if (r2 < reach2) return 1;
     }
     return 0;

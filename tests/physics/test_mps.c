@@ -187,9 +187,9 @@ static void test_sessile_150(void **state) {
 /* Wetting per liquid (potential model): the two-liquid sessile drop of
  * cases/mps_two_liquid_sessile.yaml at twice its spacing (l0 = 0.1 mm, 1,616 particles) settles
  * within 5 degrees of Young's angle cos theta_ab = (cos theta_b - cos theta_a) / 2: 60 degrees
- * from theta_a = 90, theta_b = 0 (measured 59.0), 90 from theta_a = theta_b = 90 (measured
- * 89.5); the mean of contact_angle_second over 40-60 ms. Without the per-liquid keys both read
- * 90. Angles above 90 overshoot (docs/mps.md, "Wetting: a contact angle per liquid"). */
+ * from theta_a = 90, theta_b = 0 (measured 59.3), 90 from theta_a = theta_b = 90 (measured
+ * 89.4); the mean of contact_angle_second over 40-60 ms. Without the per-liquid keys both read
+ * 90. Angles above 90 overshoot (docs/mps.md, "Wetting with two liquids"). */
 static void two_liquid_sessile(double theta_a, double theta_b, double expect) {
     char sa[64], sb[64], sub[48];
     snprintf(sa, sizeof sa, "materials[0].contact_angle=%g", theta_a);
