@@ -57,6 +57,8 @@ typedef struct mps {
     ry_surface_tension st;
     uint8_t *body_group; /* wetting: each body's wall group (bodies[k].contact_angle), or NULL */
     uint8_t *wgroup;     /* with it: each particle's wall group, set every step */
+    uint8_t *body_thin;  /* each body's bodies[k].thin (walls never free surface), or NULL */
+    uint8_t *thin;       /* with it: each particle's flag, set every step */
     int surf_head;       /* surface particles hold the head of half a spacing */
     int f_nd, f_surf, f_vs[3]; /* fields */
     int rheo_gnf;              /* some material's viscosity follows the shear rate */
@@ -126,6 +128,42 @@ static double wall_ratio_of(double theta) {
     return 0.5 * (1.0 + cos(theta * RY_PI / 180.0));
 }
 
+/* Checks that bodies[k], named in key, is a body of wall particles. */
+static ry_status body_is_wall(ry_sim *sim, ry_case *c, size_t k, const char *key, ry_error *err) {
+    char where[256];
+    size_t walls = 0, others = 0;
+    for (size_t i = 0; i < sim->ps.n; ++i)
+        if (ry_sim_body_of(sim, sim->ps.id[i]) == (int)k)
+            ++*(sim->ps.kind[i] == RY_KIND_WALL ? &walls : &others);
+    RY_CHECK(err, walls > 0 && others == 0, RY_ERR_INPUT,
+             "%s: key '%s': applies to a body of kind wall",
+             ry_case_where(c, key, where, sizeof where), key);
+    return RY_OK;
+}
+
+/* Thin walls (docs/mps.md, "Thin walls"): bodies[k].thin. A wall of one layer with air behind
+ * it reads a number density below the free-surface threshold, and as free surface (p = 0) it
+ * could not hold the pressure of the fluid on its other side. The particles of such a body
+ * with a fluid particle within reach always take part in the pressure equation. */
+static ry_status body_thin(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
+    char key[160];
+    for (size_t k = 0; k < sim->nbodies; ++k) {
+        snprintf(key, sizeof key, "bodies[%zu].thin", k);
+        if (!ry_case_has(c, key)) continue;
+        const int no = 0;
+        int on;
+        RY_TRY(ry_case_bool(c, key, &no, &on, err));
+        if (!on) continue;
+        RY_TRY(body_is_wall(sim, c, k, key, err));
+        if (!M->body_thin) {
+            M->body_thin = calloc(sim->nbodies, 1);
+            RY_CHECK(err, M->body_thin != NULL, RY_ERR_NOMEM, "out of memory");
+        }
+        M->body_thin[k] = 1;
+    }
+    return RY_OK;
+}
+
 /* Wetting of one wall body (docs/mps.md, "Wetting with two liquids"), potential model:
  * bodies[k].contact_angle, a number for every liquid or a mapping from material names to
  * angles (liquids not named keep their angle on the other walls). Such a body's walls form a
@@ -143,13 +181,7 @@ static ry_status body_angles(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
         RY_CHECK(err, groups < RY_ST_WALL_GROUPS, RY_ERR_INPUT,
                  "%s: key '%s': at most %d wall bodies with contact angles of their own",
                  ry_case_where(c, key, where, sizeof where), key, RY_ST_WALL_GROUPS - 1);
-        size_t walls = 0, others = 0;
-        for (size_t i = 0; i < sim->ps.n; ++i)
-            if (ry_sim_body_of(sim, sim->ps.id[i]) == (int)k)
-                ++*(sim->ps.kind[i] == RY_KIND_WALL ? &walls : &others);
-        RY_CHECK(err, walls > 0 && others == 0, RY_ERR_INPUT,
-                 "%s: key '%s': applies to a body of kind wall",
-                 ry_case_where(c, key, where, sizeof where), key);
+        RY_TRY(body_is_wall(sim, c, k, key, err));
         if (!M->body_group) {
             M->body_group = calloc(sim->nbodies, 1);
             RY_CHECK(err, M->body_group != NULL, RY_ERR_NOMEM, "out of memory");
@@ -320,6 +352,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_st_read(&M->st, c, sim->dim, l0, 3.1, 6.0, err));
     M->csf_pressure = ry_st_pressure_form(&M->st);
     RY_TRY(contact_angle(sim, c, M, err));
+    RY_TRY(body_thin(sim, c, M, err));
     M->re_max = fmax(fmax(M->re_g, M->re_l), M->st.model != RY_ST_NONE ? M->st.re : 0.0);
     RY_TRY(interfacial(sim, c, M, err));
     double lam_g;
@@ -373,6 +406,8 @@ static void mps_free(void *state) {
     free(M->lend);
     free(M->body_group);
     free(M->wgroup);
+    free(M->body_thin);
+    free(M->thin);
     ry_colour_free(&M->colour);
     ry_pair_cache_free(&M->pc);
     free(M);
@@ -414,9 +449,15 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         wg = realloc(M->wgroup, c * sizeof *wg);
         if (wg) M->wgroup = wg;
     }
+    uint8_t *th = M->thin;
+    if (M->body_thin) {
+        th = realloc(M->thin, c * sizeof *th);
+        if (th) M->thin = th;
+    }
     RY_CHECK(err,
              u && r && b && x && pd && o && t && ge && le && (vg || !M->rheo_ob) &&
-                 (wv || M->wall_mode != WALLV_MIRRORED) && (wg || !M->body_group),
+                 (wv || M->wall_mode != WALLV_MIRRORED) && (wg || !M->body_group) &&
+                 (th || !M->body_thin),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
@@ -534,7 +575,7 @@ static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
 /* Number density (ratio n/n0) of every particle at the current positions, and the roles: free
  * surface (p = 0) for fluid and wall particles with n < beta n0 (walls above the water line);
  * the other wall particles with a fluid neighbour within re take part in the pressure
- * equation, the rest are dummies. */
+ * equation (those of thin bodies whatever their number density), the rest are dummies. */
 static void number_density(ry_sim *sim, mps *M) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
@@ -553,7 +594,10 @@ static void number_density(ry_sim *sim, mps *M) {
         if (ps->kind[i] == RY_KIND_FLUID) {
             M->role[i] = nd[i] < M->beta ? ROLE_SURFACE : ROLE_FLUID;
         } else {
-            M->role[i] = !fluid_near ? ROLE_DUMMY : nd[i] < M->beta ? ROLE_SURFACE : ROLE_WALL;
+            const int thin = M->thin && M->thin[i];
+            M->role[i] = !fluid_near                ? ROLE_DUMMY
+                         : nd[i] < M->beta && !thin ? ROLE_SURFACE
+                                                    : ROLE_WALL;
         }
         surf[i] = M->role[i] == ROLE_SURFACE && ps->kind[i] == RY_KIND_FLUID;
     }
@@ -1082,12 +1126,13 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     RY_TRY(scratch(M, ps->n, err));
     RY_TRY(pairs_build(sim, M, err));
     size_t n = ps->n;
-    if (M->body_group) {
+    if (M->body_group || M->body_thin) { /* each wall particle's body: its group, thin */
         for (size_t i = 0; i < n; ++i) {
             const int b = ps->kind[i] == RY_KIND_WALL ? ry_sim_body_of(sim, ps->id[i]) : -1;
-            M->wgroup[i] = b >= 0 ? M->body_group[b] : 0;
+            if (M->body_group) M->wgroup[i] = b >= 0 ? M->body_group[b] : 0;
+            if (M->body_thin) M->thin[i] = b >= 0 && M->body_thin[b];
         }
-        M->st.wall_group = M->wgroup;
+        if (M->body_group) M->st.wall_group = M->wgroup;
     }
     double *a[3];
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
