@@ -27,5 +27,8 @@ void ry_mps_lattice(int dim, double l0, double re, double *n0, double *lambda);
  * (0 for other schemes). */
 int ry_mps_last_iterations(const ry_sim *sim);
 long ry_mps_total_iterations(const ry_sim *sim);
+/* Pairs of the neighbour list within the interaction radius that thin walls cut at the last
+ * step, counted from both ends (docs/mps.md, "Thin walls"). */
+size_t ry_mps_cut_pairs(const ry_sim *sim);
 
 #endif

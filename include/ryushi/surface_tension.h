@@ -47,6 +47,9 @@ typedef struct ry_surface_tension {
      * indexed like the particles. */
     double wall_ratio[RY_ST_WALL_GROUPS][256];
     const uint8_t *wall_group;
+    /* Pairs of the neighbour list (by their place in sim->nl.j) that a thin wall separates
+     * and that take no part (NULL: none); MPS sets it each step (docs/mps.md, "Thin walls"). */
+    const uint8_t *cut;
     /* Two liquids, potential model: pairs of different fluid materials with C cross_ratio,
      * cross_ratio = 1 - sigma_ab / (2 sigma) (1: the liquids mix). */
     double cross_ratio;

@@ -22,6 +22,7 @@
  *              each step (src/mps/sparse.c); the matrix of both systems is symmetric positive
  *              definite because lambda and n0 are constants of the lattice. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -58,8 +59,17 @@ typedef struct mps {
     uint8_t *body_group; /* wetting: each body's wall group (bodies[k].contact_angle), or NULL */
     uint8_t *wgroup;     /* with it: each particle's wall group, set every step */
     uint8_t *body_thin;  /* each body's bodies[k].thin (walls never free surface), or NULL */
-    uint8_t *thin;       /* with it: each particle's flag, set every step */
-    int surf_head;       /* surface particles hold the head of half a spacing */
+    int32_t *thin;       /* with it: each particle's thin body, or -1; set every step */
+    double *tnrm;        /* with it: the unit normal of each thin wall particle (3 n) */
+    double *tpw;         /*   its pressure for the gradient seen from either side (2 n) */
+    uint32_t *tn_off;    /* thin wall particles near each particle: offsets (n + 1) */
+    uint32_t *tn_j;      /*   and their indices */
+    size_t tn_cap;
+    uint8_t *cut; /* pairs of the neighbour list that a thin wall separates (by place) */
+    size_t cut_cap;
+    int thin_cut_on;           /* scheme.thin_wall_cut */
+    size_t ncut;               /* pairs within re_max cut at the last step (both ends) */
+    int surf_head;             /* surface particles hold the head of half a spacing */
     int f_nd, f_surf, f_vs[3]; /* fields */
     int rheo_gnf;              /* some material's viscosity follows the shear rate */
     int rheo_ob;               /* some material is visco-elastic */
@@ -343,6 +353,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_case_double(c, "scheme.repulsion.restitution", &ce, 0.0, 1.0, &M->coll_e, err));
     M->coll_r *= l0;
     RY_TRY(ry_case_bool(c, "scheme.wall_extrapolation", &yes, &M->wall_extrapolate, err));
+    RY_TRY(ry_case_bool(c, "scheme.thin_wall_cut", &yes, &M->thin_cut_on, err));
     RY_TRY(ry_case_double(c, "scheme.solver.tolerance", &tol, 1e-14, 1e-2, &M->tol, err));
     RY_TRY(
         ry_case_double(c, "scheme.solver.viscosity_tolerance", &vtol, 1e-14, 1e-2, &M->vtol, err));
@@ -408,6 +419,11 @@ static void mps_free(void *state) {
     free(M->wgroup);
     free(M->body_thin);
     free(M->thin);
+    free(M->tnrm);
+    free(M->tpw);
+    free(M->tn_off);
+    free(M->tn_j);
+    free(M->cut);
     ry_colour_free(&M->colour);
     ry_pair_cache_free(&M->pc);
     free(M);
@@ -449,15 +465,26 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         wg = realloc(M->wgroup, c * sizeof *wg);
         if (wg) M->wgroup = wg;
     }
-    uint8_t *th = M->thin;
+    int32_t *th = M->thin;
+    double *tv = M->tnrm;
+    uint32_t *to = M->tn_off;
     if (M->body_thin) {
         th = realloc(M->thin, c * sizeof *th);
         if (th) M->thin = th;
+        tv = realloc(M->tnrm, 3 * c * sizeof *tv);
+        if (tv) M->tnrm = tv;
+        double *tp = realloc(M->tpw, 2 * c * sizeof *tp);
+        if (tp)
+            M->tpw = tp;
+        else
+            tv = NULL;
+        to = realloc(M->tn_off, (c + 1) * sizeof *to);
+        if (to) M->tn_off = to;
     }
     RY_CHECK(err,
              u && r && b && x && pd && o && t && ge && le && (vg || !M->rheo_ob) &&
                  (wv || M->wall_mode != WALLV_MIRRORED) && (wg || !M->body_group) &&
-                 (th || !M->body_thin),
+                 ((th && tv && to) || !M->body_thin),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
@@ -494,6 +521,169 @@ static inline void row_r2(int dim, const double *const x[3], size_t i, const uin
     }
 }
 
+/* Thin walls, part 2 (docs/mps.md, "Thin walls"): pairs on the two sides of a thin wall take
+ * no part in any term. Each thin wall particle k has the unit normal of its body's sheet (the
+ * null direction of the second moment of the same body's particles within 1.5 l0; none where
+ * the body turns a corner, so that it cuts nothing there). The pair
+ * (i, j) is cut where it crosses the plane of some thin wall particle k near either end (both
+ * ends at least l0/4 off the plane) within 0.75 l0 of k: a line through a sheet of particles
+ * l0 apart passes within l0/sqrt(2) of one of them, and a line that passes the sheet's edge
+ * (the catheter's tip) farther off is not cut. The test takes the pair in one order, so the
+ * cut is symmetric, as the pressure matrix must be. */
+static void thin_normals(ry_sim *sim, mps *M) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const double r2max = 2.25 * sim->dx * sim->dx;
+    const int dim = sim->dim;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        double *nv = M->tnrm + 3 * i;
+        nv[0] = nv[1] = nv[2] = 0;
+        if (M->thin[i] < 0) continue;
+        double c[3][3] = {{0}};
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            double dx[3];
+            if (M->thin[j] != M->thin[i] || sep(sim, i, j, dx) > r2max) continue;
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b) c[a][b] += dx[a] * dx[b];
+        }
+        if (dim == 2) { /* the sheet is a line: the normal is across its largest row */
+            const int r =
+                c[0][0] * c[0][0] + c[0][1] * c[0][1] >= c[1][0] * c[1][0] + c[1][1] * c[1][1] ? 0
+                                                                                               : 1;
+            nv[0] = -c[r][1];
+            nv[1] = c[r][0];
+        } else { /* rank 2: the largest cross product of two rows */
+            double best = -1;
+            for (int a = 0; a < 3; ++a) {
+                const int b = (a + 1) % 3;
+                const double x[3] = {c[a][1] * c[b][2] - c[a][2] * c[b][1],
+                                     c[a][2] * c[b][0] - c[a][0] * c[b][2],
+                                     c[a][0] * c[b][1] - c[a][1] * c[b][0]};
+                const double m = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+                if (m > best) {
+                    best = m;
+                    memcpy(nv, x, sizeof x);
+                }
+            }
+        }
+        const double m = sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+        for (int d = 0; d < 3; ++d) nv[d] = m > 0 ? nv[d] / m : 0;
+        /* not a sheet here (a corner where the body turns): no normal, no cut */
+        double q = 0;
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) q += nv[a] * c[a][b] * nv[b];
+        if (q > 0.01 * (c[0][0] + c[1][1] + c[2][2])) nv[0] = nv[1] = nv[2] = 0;
+    }
+}
+
+/* Does a thin wall particle of the list ks[0..nk-1] separate particles a and b? */
+static int thin_between(ry_sim *sim, const mps *M, size_t a, size_t b, const uint32_t *ks,
+                        size_t nk) {
+    const double l0 = sim->dx, off = 0.25 * l0, reach2 = 0.5625 * l0 * l0;
+    for (size_t m = 0; m < nk; ++m) {
+        const uint32_t k = ks[m];
+        if (k == a || k == b) continue;
+        const double *nv = M->tnrm + 3 * k;
+        double da[3], db[3];
+        sep(sim, k, a, da);
+        sep(sim, k, b, db);
+        const double sa = nv[0] * da[0] + nv[1] * da[1] + nv[2] * da[2],
+                     sb = nv[0] * db[0] + nv[1] * db[1] + nv[2] * db[2];
+        if (!(sa * sb < 0) || fabs(sa) < off || fabs(sb) < off) continue;
+        const double t = sa / (sa - sb);
+        double c2 = 0;
+        for (int d = 0; d < 3; ++d) {
+            const double c = da[d] + t * (db[d] - da[d]);
+            c2 += c * c;
+        }
+        if (c2 < reach2) return 1;
+    }
+    return 0;
+}
+
+static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n, nq = sim->nl.offset[n];
+    thin_normals(sim, M);
+    /* the thin wall particles within 2.3 l0 of each particle: the crossing lies within half
+     * the pair's length (at most re, 3.1 l0) of one end, and k within 0.75 l0 of it */
+    const double r2k = 2.3 * 2.3 * sim->dx * sim->dx;
+    M->tn_off[0] = 0;
+    for (size_t i = 0; i < n; ++i) {
+        uint32_t c = 0;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            double dx[3];
+            const uint32_t j = sim->nl.j[q];
+            c += M->thin[j] >= 0 && sep(sim, i, j, dx) < r2k;
+        }
+        M->tn_off[i + 1] = M->tn_off[i] + c;
+    }
+    if (M->tn_cap < M->tn_off[n] || !M->tn_j) {
+        const size_t c = M->tn_off[n] + M->tn_off[n] / 4 + 16;
+        uint32_t *t = realloc(M->tn_j, c * sizeof *t);
+        RY_CHECK(err, t != NULL, RY_ERR_NOMEM, "out of memory (thin walls)");
+        M->tn_j = t;
+        M->tn_cap = c;
+    }
+    if (M->cut_cap < nq || !M->cut) {
+        const size_t c = nq + nq / 4 + 16;
+        uint8_t *t = realloc(M->cut, c);
+        RY_CHECK(err, t != NULL, RY_ERR_NOMEM, "out of memory (thin walls)");
+        M->cut = t;
+        M->cut_cap = c;
+    }
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        uint32_t c = M->tn_off[i];
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            double dx[3];
+            const uint32_t j = sim->nl.j[q];
+            if (M->thin[j] >= 0 && sep(sim, i, j, dx) < r2k) M->tn_j[c++] = j;
+        }
+    }
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            const uint32_t j = sim->nl.j[q];
+            const size_t a = i < j ? i : j, b = i < j ? j : i;
+            uint8_t cut = 0;
+            if (M->thin_cut_on && (ps->kind[a] != RY_KIND_WALL || ps->kind[b] != RY_KIND_WALL))
+                cut = (uint8_t)(thin_between(sim, M, a, b, M->tn_j + M->tn_off[a],
+                                             M->tn_off[a + 1] - M->tn_off[a]) ||
+                                thin_between(sim, M, a, b, M->tn_j + M->tn_off[b],
+                                             M->tn_off[b + 1] - M->tn_off[b]));
+            M->cut[q] = cut;
+        }
+    }
+    M->st.cut = M->cut;
+    size_t nc = 0; /* the cut pairs within the interaction radius, for ry_mps_cut_pairs */
+    const double rm2 = M->re_max * M->re_max;
+#pragma omp parallel for reduction(+ : nc) schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i)
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            double dx[3];
+            nc += M->cut[q] && sep(sim, i, sim->nl.j[q], dx) < rm2;
+        }
+    M->ncut = nc;
+    return RY_OK;
+}
+
+/* Each wall particle's body, every step (ids survive reordering): its wetting group
+ * (bodies[k].contact_angle) and whether it is thin, with the pairs thin walls cut. */
+static ry_status wall_bodies(ry_sim *sim, mps *M, ry_error *err) {
+    if (!M->body_group && !M->body_thin) return RY_OK;
+    const ry_particles *ps = &sim->ps;
+    for (size_t i = 0; i < ps->n; ++i) {
+        const int b = ps->kind[i] == RY_KIND_WALL ? ry_sim_body_of(sim, ps->id[i]) : -1;
+        if (M->body_group) M->wgroup[i] = b >= 0 ? M->body_group[b] : 0;
+        if (M->body_thin) M->thin[i] = b >= 0 && M->body_thin[b] ? b : -1;
+    }
+    if (M->body_group) M->st.wall_group = M->wgroup;
+    return M->body_thin ? thin_cut(sim, M, err) : RY_OK;
+}
+
 /* The pairs within re_g and re_l (the fields pj, pr, gend, lend of mps) from the neighbour
  * list, whose reach is the largest radius and a skin: the loops over them need neither the
  * distances nor the pairs beyond their radius again. Within each radius the pairs keep the
@@ -514,6 +704,7 @@ static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
     const double ri = fmin(M->re_g, M->re_l), ro = fmax(M->re_g, M->re_l);
     const double ri2 = ri * ri, ro2 = ro * ro;
     const int g_inner = M->re_g <= M->re_l, dim = sim->dim;
+    const uint8_t *cut = M->body_thin ? M->cut : NULL;
     int periodic = 0;
     for (int d = 0; d < dim; ++d) periodic |= sim->box.periodic[d];
     size_t rowmax = 0;
@@ -551,12 +742,13 @@ static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
             for (size_t k = 0; k < nb; ++k) {
                 const double v = rb[k];
                 const uint32_t j = nj[k];
+                const int keep = !cut || !cut[lo + k];
                 pj[a] = j;
                 pr[a] = v;
                 oj[no] = j;
                 orr[no] = v;
-                a += v < ri2;
-                no += (v >= ri2) & (v < ro2);
+                a += keep & (v < ri2);
+                no += keep & (v >= ri2) & (v < ro2);
             }
             memcpy(pj + a, oj, no * sizeof *oj);
             memcpy(pr + a, orr, no * sizeof *orr);
@@ -594,7 +786,7 @@ static void number_density(ry_sim *sim, mps *M) {
         if (ps->kind[i] == RY_KIND_FLUID) {
             M->role[i] = nd[i] < M->beta ? ROLE_SURFACE : ROLE_FLUID;
         } else {
-            const int thin = M->thin && M->thin[i];
+            const int thin = M->thin && M->thin[i] >= 0;
             M->role[i] = !fluid_near                ? ROLE_DUMMY
                          : nd[i] < M->beta && !thin ? ROLE_SURFACE
                                                     : ROLE_WALL;
@@ -924,6 +1116,22 @@ static double divergence(const ry_sim *sim, const mps *M, size_t i) {
     return sim->dim * s / M->n0g;
 }
 
+/* The unit normal of thin wall particle i, or NULL (not thin, or no sheet there). */
+static inline const double *thin_normal(const mps *M, size_t i) {
+    if (!M->body_thin || M->thin[i] < 0) return NULL;
+    const double *nv = M->tnrm + 3 * i;
+    return nv[0] != 0 || nv[1] != 0 || nv[2] != 0 ? nv : NULL;
+}
+
+/* The pressure of neighbour j in the gradient of fluid particle i (dx = x_j - x_i): a thin
+ * wall's extrapolated pressure is taken from the fluid on i's side of it. */
+static inline double grad_pressure(const mps *M, const double *p, size_t j, const double *dx) {
+    const double *tn = M->wall_extrapolate ? thin_normal(M, j) : NULL;
+    if (!tn) return p[j];
+    const int side = tn[0] * dx[0] + tn[1] * dx[1] + tn[2] * dx[2] > 0;
+    return M->tpw[2 * j + side];
+}
+
 /* Wall pressure for the gradient extrapolated from the fluid (as Adami et al. 2012 do for
  * SPH): p_w = sum_f w (p_f + rho_f g.(x_w - x_f)) / sum_f w over the fluid within re_g. Kept
  * in the xs work array (the PPE values stay in the pressure field). */
@@ -937,7 +1145,8 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
     for (size_t i = 0; i < n; ++i) {
         pw[i] = p[i];
         if (M->role[i] != ROLE_WALL) continue;
-        double s = 0, sw = 0;
+        double s = 0, sw = 0, ss[2] = {0, 0}, sws[2] = {0, 0};
+        const double *tn = thin_normal(M, i);
         for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
             const uint32_t j = M->pj[q];
             if (ps->kind[j] != RY_KIND_FLUID) continue;
@@ -946,10 +1155,19 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
             const double w = ry_mps_weight_tamai(M->pr[q], re);
             double gd = 0; /* g . (x_i - x_j) = -g . dx */
             for (int d = 0; d < sim->dim; ++d) gd -= sim->gravity[d] * dx[d];
-            s += w * (p[j] + sim->mat[ps->material[j]].density * gd);
+            const double v = p[j] + sim->mat[ps->material[j]].density * gd;
+            s += w * v;
             sw += w;
+            if (tn) { /* a thin wall: the fluid on either side of its sheet apart */
+                const int side = tn[0] * dx[0] + tn[1] * dx[1] + tn[2] * dx[2] < 0;
+                ss[side] += w * v;
+                sws[side] += w;
+            }
         }
         if (sw > 0) pw[i] = fmax(s / sw, 0.0);
+        if (tn)
+            for (int side = 0; side < 2; ++side)
+                M->tpw[2 * i + side] = sws[side] > 0 ? fmax(ss[side] / sws[side], 0.0) : pw[i];
     }
     for (size_t i = 0; i < n; ++i)
         if (M->role[i] == ROLE_WALL) ps->f[RY_F_P][i] = pw[i];
@@ -1073,7 +1291,11 @@ static void correct(ry_sim *sim, mps *M, double dt) {
          * difference that pushes it back, and the surface roughens until the drop breaks up. */
         const int own = M->csf_pressure && M->role[i] == ROLE_SURFACE;
         for (size_t q = sim->nl.offset[i]; M->pmin_on && !own && q < M->gend[i]; ++q)
-            if (M->role[M->pj[q]] != ROLE_DUMMY) pmin = fmin(pmin, p[M->pj[q]]);
+            if (M->role[M->pj[q]] != ROLE_DUMMY) {
+                double dx[3];
+                sep(sim, i, M->pj[q], dx);
+                pmin = fmin(pmin, grad_pressure(M, p, M->pj[q], dx));
+            }
         double m[3][3] = {{0}}, g[3] = {0, 0, 0}, x[3] = {0, 0, 0};
         for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
             const uint32_t j = M->pj[q];
@@ -1081,8 +1303,9 @@ static void correct(ry_sim *sim, mps *M, double dt) {
             const double r2 = sep(sim, i, j, dx);
             if (M->role[j] == ROLE_DUMMY || r2 <= 0) continue;
             const double w = ry_mps_weight_tamai(M->pr[q], re), wr = w / r2;
+            const double pj = grad_pressure(M, p, j, dx);
             for (int a = 0; a < dim; ++a) {
-                g[a] += wr * (p[j] - pmin) * dx[a];
+                g[a] += wr * (pj - pmin) * dx[a];
                 for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
             }
         }
@@ -1124,16 +1347,9 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     /* Explicit part at x^n: gravity, surface tension, viscosity. */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
+    RY_TRY(wall_bodies(sim, M, err));
     RY_TRY(pairs_build(sim, M, err));
     size_t n = ps->n;
-    if (M->body_group || M->body_thin) { /* each wall particle's body: its group, thin */
-        for (size_t i = 0; i < n; ++i) {
-            const int b = ps->kind[i] == RY_KIND_WALL ? ry_sim_body_of(sim, ps->id[i]) : -1;
-            if (M->body_group) M->wgroup[i] = b >= 0 ? M->body_group[b] : 0;
-            if (M->body_thin) M->thin[i] = b >= 0 && M->body_thin[b];
-        }
-        if (M->body_group) M->st.wall_group = M->wgroup;
-    }
     double *a[3];
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
     for (size_t i = 0; i < n; ++i)
@@ -1158,6 +1374,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     /* Pressure at x* (the list may be rebuilt and the particles reordered). */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
+    RY_TRY(wall_bodies(sim, M, err));
     RY_TRY(pairs_build(sim, M, err));
     number_density(sim, M);
     RY_TRY(pressure(sim, M, dt, err));
@@ -1242,6 +1459,11 @@ int ry_mps_last_iterations(const ry_sim *sim) {
 long ry_mps_total_iterations(const ry_sim *sim) {
     if (sim->scheme != &ry_scheme_mps || !sim->scheme_state) return 0;
     return ((const mps *)sim->scheme_state)->total_iters;
+}
+
+size_t ry_mps_cut_pairs(const ry_sim *sim) {
+    if (sim->scheme != &ry_scheme_mps || !sim->scheme_state) return 0;
+    return ((const mps *)sim->scheme_state)->ncut;
 }
 
 /* Probes. */

@@ -85,6 +85,7 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     st->C = ry_st_potential_coefficient(dim, l0, re, sigma);
     memset(st->wall_ratio, 0, sizeof st->wall_ratio);
     st->wall_group = NULL;
+    st->cut = NULL;
     st->cross_ratio = 1.0;
     st->contact_angle = NAN;
     st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
@@ -211,6 +212,7 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
     s[0] = s[1] = s[2] = 0;
     *count = 0;
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        if (st->cut && st->cut[q]) continue;
         const uint32_t j = sim->nl.j[q];
         double dx[3];
         const double r2 = pair_sep(sim, i, j, dx);
@@ -238,6 +240,7 @@ static int contact_frame(const ry_surface_tension *st, const ry_sim *sim, size_t
     double nw[3] = {0, 0, 0};
     *near = 0;
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        if (st->cut && st->cut[q]) continue;
         const uint32_t j = sim->nl.j[q];
         if (ps->kind[j] != RY_KIND_WALL) continue;
         double dx[3];
@@ -283,6 +286,7 @@ static void wetted_colour(const ry_surface_tension *st, const ry_sim *sim, size_
     if (!contact_frame(st, sim, i, n, nth, &near)) return;
     /* g holds every wall (st_sums): take out those beyond the plane. */
     for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        if (st->cut && st->cut[q]) continue;
         const uint32_t j = sim->nl.j[q];
         if (ps->kind[j] != RY_KIND_WALL) continue;
         double dx[3], out = 0;
@@ -357,6 +361,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         if (gs[3 * i] == 0 && gs[3 * i + 1] == 0 && gs[3 * i + 2] == 0) continue;
         double g[3] = {gs[3 * i], gs[3 * i + 1], gs[3 * i + 2]}, gn = 0;
         for (size_t q = sim->nl.offset[i]; surf && q < sim->nl.offset[i + 1]; ++q) {
+            if (st->cut && st->cut[q]) continue;
             const uint32_t j = sim->nl.j[q];
             double dx[3];
             if (ps->kind[j] != RY_KIND_FLUID) continue;
@@ -378,6 +383,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         if (isnan(nrm[3 * i])) continue;
         double m[3][3] = {{0}}, h[3][3] = {{0}};
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            if (st->cut && st->cut[q]) continue;
             const uint32_t j = sim->nl.j[q];
             if (ps->kind[j] != RY_KIND_FLUID || isnan(nrm[3 * j])) continue;
             double dx[3] = {0, 0, 0}, r2 = 0;
@@ -420,6 +426,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         if (isnan(nrm[3 * i])) continue;
         double ks = raw[i], ws = 1.0;
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+            if (st->cut && st->cut[q]) continue;
             const uint32_t j = sim->nl.j[q];
             if (ps->kind[j] != RY_KIND_FLUID || isnan(nrm[3 * j])) continue;
             double dx[3] = {0, 0, 0}, r2 = 0;
@@ -459,6 +466,7 @@ void ry_st_laplace_pressure(const ry_surface_tension *st, const ry_sim *sim, con
             if (tag[i] != surface || ps->kind[i] != RY_KIND_FLUID) continue;
             double ks = pd[i], ws = 1.0;
             for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+                if (st->cut && st->cut[q]) continue;
                 const uint32_t j = sim->nl.j[q];
                 if (tag[j] != surface || ps->kind[j] != RY_KIND_FLUID) continue;
                 double dx[3];
