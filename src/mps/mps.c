@@ -468,23 +468,21 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     int32_t *th = M->thin;
     double *tv = M->tnrm;
     uint32_t *to = M->tn_off;
+    double *tp = M->tpw;
     if (M->body_thin) {
         th = realloc(M->thin, c * sizeof *th);
         if (th) M->thin = th;
         tv = realloc(M->tnrm, 3 * c * sizeof *tv);
         if (tv) M->tnrm = tv;
-        double *tp = realloc(M->tpw, 2 * c * sizeof *tp);
-        if (tp)
-            M->tpw = tp;
-        else
-            tv = NULL;
+        tp = realloc(M->tpw, 2 * c * sizeof *tp);
+        if (tp) M->tpw = tp;
         to = realloc(M->tn_off, (c + 1) * sizeof *to);
         if (to) M->tn_off = to;
     }
     RY_CHECK(err,
              u && r && b && x && pd && o && t && ge && le && (vg || !M->rheo_ob) &&
                  (wv || M->wall_mode != WALLV_MIRRORED) && (wg || !M->body_group) &&
-                 ((th && tv && to) || !M->body_thin),
+                 ((th && tv && tp && to) || !M->body_thin),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
@@ -607,6 +605,9 @@ static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n, nq = sim->nl.offset[n];
     thin_normals(sim, M);
+    M->st.cut = NULL;
+    M->ncut = 0;
+    if (!M->thin_cut_on) return RY_OK;
     /* the thin wall particles within 2.3 l0 of each particle: the crossing lies within half
      * the pair's length (at most re, 3.1 l0) of one end, and k within 0.75 l0 of it */
     const double r2k = 2.3 * 2.3 * sim->dx * sim->dx;
@@ -643,29 +644,26 @@ static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
             if (M->thin[j] >= 0 && sep(sim, i, j, dx) < r2k) M->tn_j[c++] = j;
         }
     }
-#pragma omp parallel for schedule(dynamic, 64)
+    /* the cut pairs within the interaction radius are counted for ry_mps_cut_pairs */
+    const double rm2 = M->re_max * M->re_max;
+    size_t nc = 0;
+#pragma omp parallel for reduction(+ : nc) schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
             const uint32_t j = sim->nl.j[q];
             const size_t a = i < j ? i : j, b = i < j ? j : i;
             uint8_t cut = 0;
-            if (M->thin_cut_on && (ps->kind[a] != RY_KIND_WALL || ps->kind[b] != RY_KIND_WALL))
+            if (ps->kind[a] != RY_KIND_WALL || ps->kind[b] != RY_KIND_WALL)
                 cut = (uint8_t)(thin_between(sim, M, a, b, M->tn_j + M->tn_off[a],
                                              M->tn_off[a + 1] - M->tn_off[a]) ||
                                 thin_between(sim, M, a, b, M->tn_j + M->tn_off[b],
                                              M->tn_off[b + 1] - M->tn_off[b]));
             M->cut[q] = cut;
+            double dx[3];
+            nc += cut && sep(sim, i, j, dx) < rm2;
         }
     }
     M->st.cut = M->cut;
-    size_t nc = 0; /* the cut pairs within the interaction radius, for ry_mps_cut_pairs */
-    const double rm2 = M->re_max * M->re_max;
-#pragma omp parallel for reduction(+ : nc) schedule(dynamic, 64)
-    for (size_t i = 0; i < n; ++i)
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            double dx[3];
-            nc += M->cut[q] && sep(sim, i, sim->nl.j[q], dx) < rm2;
-        }
     M->ncut = nc;
     return RY_OK;
 }
@@ -704,7 +702,7 @@ static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
     const double ri = fmin(M->re_g, M->re_l), ro = fmax(M->re_g, M->re_l);
     const double ri2 = ri * ri, ro2 = ro * ro;
     const int g_inner = M->re_g <= M->re_l, dim = sim->dim;
-    const uint8_t *cut = M->body_thin ? M->cut : NULL;
+    const uint8_t *cut = M->st.cut; /* thin walls' cut pairs, or NULL */
     int periodic = 0;
     for (int d = 0; d < dim; ++d) periodic |= sim->box.periodic[d];
     size_t rowmax = 0;
@@ -1292,9 +1290,14 @@ static void correct(ry_sim *sim, mps *M, double dt) {
         const int own = M->csf_pressure && M->role[i] == ROLE_SURFACE;
         for (size_t q = sim->nl.offset[i]; M->pmin_on && !own && q < M->gend[i]; ++q)
             if (M->role[M->pj[q]] != ROLE_DUMMY) {
-                double dx[3];
-                sep(sim, i, M->pj[q], dx);
-                pmin = fmin(pmin, grad_pressure(M, p, M->pj[q], dx));
+                const uint32_t j = M->pj[q];
+                double pj = p[j];
+                if (thin_normal(M, j)) { /* the side of a thin wall needs the separation */
+                    double dx[3];
+                    sep(sim, i, j, dx);
+                    pj = grad_pressure(M, p, j, dx);
+                }
+                pmin = fmin(pmin, pj);
             }
         double m[3][3] = {{0}}, g[3] = {0, 0, 0}, x[3] = {0, 0, 0};
         for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
