@@ -220,6 +220,12 @@ struct ry_sim {
      * nozzle or catheter (-1: none) and the height of the tip along the vertical (last) axis. */
     int droplet_material;
     double droplet_tip;
+    /* Case key time.stop_when: the run ends at the first output whose measured quantity (one
+     * of probes, index stop_probe; -1: none) lies above (stop_above) or below stop_value.
+     * stop_reason then says so. */
+    int stop_probe, stop_above;
+    double stop_value;
+    char stop_reason[192];
 
     /* output */
     char *out_dir;

@@ -28,6 +28,9 @@ int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *f
 void ry_cli_check(const char *what, int ok, int *failures);
 /* The 2D embolization tank: droplet, volumes, Tate's law (validate_embolization.c). */
 int ry_cli_validate_embolization(const char *root, const char *out, int quick, int *failures);
+/* The coarse 3D embolization tank until its droplet detaches, resumable
+ * (validate_embolization3d.c). */
+int ry_cli_validate_embolization3d(const char *root, const char *out, int quick, int *failures);
 /* Non-Newtonian channel flows (validate_rheology.c). */
 int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *failures);
 /* IISPH and two-phase validation (validate_iisph.c). */

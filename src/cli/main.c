@@ -51,7 +51,7 @@ static void usage(FILE *fp) {
             "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
             "  ryushi validate "
             "[dam_break|cavity|channel|cantilever|plate|buckling|mps|rheology|iisph|rt|eye|"
-            "embolization|wetting|all] [--quick]\n"
+            "embolization|embolization3d|wetting|all] [--quick]\n"
             "        [-o DIR] [--threads N]\n"
             "        run the validation cases against their references, with plots\n"
             "        (default output folder out/validate)\n"
@@ -219,6 +219,7 @@ static int cmd_run(int argc, char **argv) {
     st = ry_sim_run(&sim, &hooks, &stats, &err);
     if (pc.tty) fprintf(stderr, "\n");
     if (st != RY_OK) rc = fail(&err);
+    if (st == RY_OK && sim.stop_reason[0]) printf("%s\n", sim.stop_reason);
     char scheme_stats[256] = "";
     if (sim.scheme && sim.scheme->report) {
         scheme_stats[0] = ' ';
@@ -311,6 +312,7 @@ static int cmd_run_mpi(int argc, char **argv) {
     if (rank == 0 && pc.tty) fprintf(stderr, "\n");
     rc = st != RY_OK ? ry_status_exit_code(st) : 0;
     if (st != RY_OK && rank == 0) fail(&err);
+    if (st == RY_OK && rank == 0 && sim.stop_reason[0]) printf("%s\n", sim.stop_reason);
     ry_mpi_stats ms;
     ry_mpi_get_stats(&sim, &ms);
     double comm_max, wall_max, part[3] = {ms.redist_s, ms.halo_s, ms.reduce_s}, part_max[3];

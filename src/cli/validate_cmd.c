@@ -434,10 +434,11 @@ int ry_cli_validate(int argc, char **argv) {
         strcmp(what, "plate") != 0 && strcmp(what, "buckling") != 0 && strcmp(what, "mps") != 0 &&
         strcmp(what, "rheology") != 0 && strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 &&
         strcmp(what, "eye") != 0 && strcmp(what, "embolization") != 0 &&
-        strcmp(what, "wetting") != 0) {
+        strcmp(what, "embolization3d") != 0 && strcmp(what, "wetting") != 0) {
         fprintf(stderr,
                 "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
-                "buckling, mps, rheology, iisph, rt, eye, embolization, wetting or all, got '%s'\n",
+                "buckling, mps, rheology, iisph, rt, eye, embolization, embolization3d, wetting or "
+                "all, got '%s'\n",
                 what);
         return 2;
     }
@@ -460,6 +461,8 @@ int ry_cli_validate(int argc, char **argv) {
     if (strcmp(what, "eye") == 0) ry_cli_validate_eye(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "embolization") == 0)
         ry_cli_validate_embolization(v.root, v.out, v.quick, &v.failures);
+    if (strcmp(what, "embolization3d") == 0)
+        ry_cli_validate_embolization3d(v.root, v.out, v.quick, &v.failures);
     printf("validate: %s (%d failure(s)); output in %s\n", v.failures ? "FAILED" : "passed",
            v.failures, v.out);
     return v.failures ? 1 : 0;

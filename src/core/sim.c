@@ -132,6 +132,37 @@ static ry_status read_droplet(ry_sim *sim, ry_case *c, ry_error *err) {
     return ry_case_double(c, "droplet.tip", NULL, -INFINITY, INFINITY, &sim->droplet_tip, err);
 }
 
+/* time.stop_when: {quantity: NAME, above: V} or {quantity: NAME, below: V}, NAME one of the
+ * quantities in `measure`. */
+static ry_status read_stop_when(ry_sim *sim, ry_case *c, ry_error *err) {
+    sim->stop_probe = -1;
+    sim->stop_reason[0] = 0;
+    if (!ry_case_has(c, "time.stop_when")) return RY_OK;
+    char where[512];
+    const int above = ry_case_has(c, "time.stop_when.above"),
+              below = ry_case_has(c, "time.stop_when.below");
+    RY_CHECK(err, above + below == 1, RY_ERR_INPUT,
+             "%s: key 'time.stop_when' needs one of 'above' and 'below'",
+             ry_case_where(c, "time.stop_when", where, sizeof where));
+    const char **names = calloc((size_t)sim->nprobes + 1, sizeof *names);
+    RY_CHECK(err, names != NULL, RY_ERR_NOMEM, "out of memory");
+    for (int k = 0; k < sim->nprobes; ++k) names[k] = sim->probes[k]->name;
+    const char *q = NULL;
+    ry_status st = ry_case_string(c, "time.stop_when.quantity", NULL, &q, err);
+    int which = -1;
+    for (int k = 0; st == RY_OK && k < sim->nprobes; ++k)
+        if (strcmp(q, names[k]) == 0) which = k;
+    free(names);
+    RY_TRY(st);
+    RY_CHECK(err, which >= 0, RY_ERR_INPUT,
+             "%s: key 'time.stop_when.quantity': '%s' is not measured (add it to 'measure')",
+             ry_case_where(c, "time.stop_when.quantity", where, sizeof where), q);
+    sim->stop_probe = which;
+    sim->stop_above = above;
+    return ry_case_double(c, above ? "time.stop_when.above" : "time.stop_when.below", NULL,
+                          -INFINITY, INFINITY, &sim->stop_value, err);
+}
+
 static ry_status read_probes(ry_sim *sim, ry_case *c, ry_error *err) {
     size_t n;
     char k[64];
@@ -155,7 +186,8 @@ static ry_status read_probes(ry_sim *sim, ry_case *c, ry_error *err) {
         if (st == RY_OK) sim->probes[sim->nprobes++] = all[which];
     }
     free(names);
-    return st;
+    RY_TRY(st);
+    return read_stop_when(sim, c, err);
 }
 
 static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {

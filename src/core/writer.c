@@ -102,6 +102,12 @@ ry_status ry_sim_write_output(ry_sim *sim, ry_error *err) {
         double v;
         RY_TRY(sim->probes[k]->eval(sim, &v, err));
         RY_TRY(csv_append(w, err, ",%.12g", v));
+        if (k == sim->stop_probe && (sim->stop_above ? v > sim->stop_value : v < sim->stop_value)) {
+            sim->finished = 1;
+            snprintf(sim->stop_reason, sizeof sim->stop_reason,
+                     "stopped at t = %.6g s: %s = %.6g, %s %.6g (time.stop_when)", sim->t,
+                     sim->probes[k]->name, v, sim->stop_above ? "above" : "below", sim->stop_value);
+        }
     }
     RY_TRY(csv_append(w, err, "\n"));
     snprintf(path, sizeof path, "%s/series.csv", sim->out_dir);

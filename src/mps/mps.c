@@ -65,9 +65,12 @@ typedef struct mps {
     uint32_t *tn_off;    /* thin wall particles near each particle: offsets (n + 1) */
     uint32_t *tn_j;      /*   and their indices */
     size_t tn_cap;
-    uint8_t *cut; /* pairs of the neighbour list that a thin wall separates (by place) */
+    uint8_t *cut;     /* pairs of the neighbour list that a thin wall separates (by place) */
+    uint8_t *cut_row; /* with it: the rows that may hold a cut pair (n) */
     size_t cut_cap;
-    int thin_cut_on;           /* scheme.thin_wall_cut */
+    int thin_cut_on; /* scheme.thin_wall_cut */
+    long wb_key[3];  /* searches, list edits and particles when wall_bodies last ran */
+    int wb_valid;
     size_t ncut;               /* pairs within re_max cut at the last step (both ends) */
     int surf_head;             /* surface particles hold the head of half a spacing */
     int f_nd, f_surf, f_vs[3]; /* fields */
@@ -423,6 +426,7 @@ static void mps_free(void *state) {
     free(M->tpw);
     free(M->tn_off);
     free(M->tn_j);
+    free(M->cut_row);
     free(M->cut);
     ry_colour_free(&M->colour);
     ry_pair_cache_free(&M->pc);
@@ -468,6 +472,7 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     int32_t *th = M->thin;
     double *tv = M->tnrm;
     uint32_t *to = M->tn_off;
+    uint8_t *cr = M->cut_row;
     double *tp = M->tpw;
     if (M->body_thin) {
         th = realloc(M->thin, c * sizeof *th);
@@ -478,11 +483,13 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         if (tp) M->tpw = tp;
         to = realloc(M->tn_off, (c + 1) * sizeof *to);
         if (to) M->tn_off = to;
+        cr = realloc(M->cut_row, c);
+        if (cr) M->cut_row = cr;
     }
     RY_CHECK(err,
              u && r && b && x && pd && o && t && ge && le && (vg || !M->rheo_ob) &&
                  (wv || M->wall_mode != WALLV_MIRRORED) && (wg || !M->body_group) &&
-                 ((th && tv && tp && to) || !M->body_thin),
+                 ((th && tv && tp && to && cr) || !M->body_thin),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
@@ -609,18 +616,21 @@ static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
     M->ncut = 0;
     if (!M->thin_cut_on) return RY_OK;
     /* the thin wall particles within 2.3 l0 of each particle: the crossing lies within half
-     * the pair's length (at most re, 3.1 l0) of one end, and k within 0.75 l0 of it */
+     * the pair's length (at most re, 3.1 l0) of one end, and k within 0.75 l0 of it. The list
+     * is symmetric, so they come from the rows of the thin particles, which are few: rows far
+     * from every thin wall are not read. */
     const double r2k = 2.3 * 2.3 * sim->dx * sim->dx;
-    M->tn_off[0] = 0;
-    for (size_t i = 0; i < n; ++i) {
-        uint32_t c = 0;
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+    uint32_t *cnt = M->tn_off + 1;
+    memset(M->tn_off, 0, (n + 1) * sizeof *M->tn_off);
+    for (size_t k = 0; k < n; ++k) {
+        if (M->thin[k] < 0) continue;
+        for (size_t q = sim->nl.offset[k]; q < sim->nl.offset[k + 1]; ++q) {
             double dx[3];
             const uint32_t j = sim->nl.j[q];
-            c += M->thin[j] >= 0 && sep(sim, i, j, dx) < r2k;
+            cnt[j] += sep(sim, j, k, dx) < r2k;
         }
-        M->tn_off[i + 1] = M->tn_off[i] + c;
     }
+    for (size_t i = 0; i < n; ++i) M->tn_off[i + 1] += M->tn_off[i];
     if (M->tn_cap < M->tn_off[n] || !M->tn_j) {
         const size_t c = M->tn_off[n] + M->tn_off[n] / 4 + 16;
         uint32_t *t = realloc(M->tn_j, c * sizeof *t);
@@ -635,21 +645,39 @@ static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
         M->cut = t;
         M->cut_cap = c;
     }
-#pragma omp parallel for schedule(dynamic, 64)
-    for (size_t i = 0; i < n; ++i) {
-        uint32_t c = M->tn_off[i];
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+    /* fill each particle's list from its end down: tn_off[i + 1] ends at i's start, and one
+     * shift makes it the start again */
+    const uint32_t total = M->tn_off[n];
+    for (size_t k = 0; k < n; ++k) {
+        if (M->thin[k] < 0) continue;
+        for (size_t q = sim->nl.offset[k]; q < sim->nl.offset[k + 1]; ++q) {
             double dx[3];
             const uint32_t j = sim->nl.j[q];
-            if (M->thin[j] >= 0 && sep(sim, i, j, dx) < r2k) M->tn_j[c++] = j;
+            if (sep(sim, j, k, dx) < r2k) M->tn_j[--cnt[j]] = (uint32_t)k;
         }
+    }
+    memmove(M->tn_off, M->tn_off + 1, n * sizeof *M->tn_off);
+    M->tn_off[n] = total;
+    /* the rows with a pair that may be cut: a particle with a thin one near, and its
+     * neighbours */
+    uint8_t *act = M->cut_row;
+    memset(act, 0, n);
+    for (size_t i = 0; i < n; ++i) {
+        if (M->tn_off[i + 1] == M->tn_off[i]) continue;
+        act[i] = 1;
+        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) act[sim->nl.j[q]] = 1;
     }
     /* the cut pairs within the interaction radius are counted for ry_mps_cut_pairs */
     const double rm2 = M->re_max * M->re_max;
     size_t nc = 0;
 #pragma omp parallel for reduction(+ : nc) schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const size_t q0 = sim->nl.offset[i], q1 = sim->nl.offset[i + 1];
+        if (!act[i]) {
+            memset(M->cut + q0, 0, q1 - q0);
+            continue;
+        }
+        for (size_t q = q0; q < q1; ++q) {
             const uint32_t j = sim->nl.j[q];
             const size_t a = i < j ? i : j, b = i < j ? j : i;
             uint8_t cut = 0;
@@ -673,7 +701,12 @@ static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
 static ry_status wall_bodies(ry_sim *sim, mps *M, ry_error *err) {
     if (!M->body_group && !M->body_thin) return RY_OK;
     const ry_particles *ps = &sim->ps;
-    for (size_t i = 0; i < ps->n; ++i) {
+    /* the particles keep their places between searches and edits of the set (a serial run) */
+    const long key[3] = {sim->searches, sim->nl_edits, (long)ps->n};
+    const int same = !sim->par && M->wb_valid && memcmp(key, M->wb_key, sizeof key) == 0;
+    memcpy(M->wb_key, key, sizeof key);
+    M->wb_valid = 1;
+    for (size_t i = 0; i < ps->n && !same; ++i) {
         const int b = ps->kind[i] == RY_KIND_WALL ? ry_sim_body_of(sim, ps->id[i]) : -1;
         if (M->body_group) M->wgroup[i] = b >= 0 ? M->body_group[b] : 0;
         if (M->body_thin) M->thin[i] = b >= 0 && M->body_thin[b] ? b : -1;

@@ -670,9 +670,11 @@ static ry_status par_output(ry_sim *sim, ry_error *err) {
         if (st == RY_OK) st = ry_sim_write_output(v, err);
     }
     st = share_error(P, 0, st, err);
-    int idx = P->rank == 0 ? P->view->output_index : 0;
-    MPI_Bcast(&idx, 1, MPI_INT, 0, P->comm);
-    sim->output_index = idx;
+    int idx[2] = {P->rank == 0 ? P->view->output_index : 0, P->rank == 0 ? P->view->finished : 0};
+    MPI_Bcast(idx, 2, MPI_INT, 0, P->comm);
+    sim->output_index = idx[0];
+    sim->finished = idx[1]; /* time.stop_when, measured on rank 0's view */
+    if (P->rank == 0) memcpy(sim->stop_reason, P->view->stop_reason, sizeof sim->stop_reason);
     return st;
 }
 

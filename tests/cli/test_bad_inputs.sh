@@ -41,6 +41,8 @@ case_ contact_angle_without_model 2 ":7: key 'surface_tension.contact_angle': ne
 case_ contact_angle_per_liquid_csf 2 ":6: key 'materials[0].contact_angle': a contact angle per liquid needs surface_tension.model potential (CSF takes one angle, surface_tension.contact_angle)"
 case_ contact_angle_fluid_body 2 ":8: key 'bodies[0].contact_angle': applies to a body of kind wall"
 case_ thin_fluid_body 2 ":8: key 'bodies[0].thin': applies to a body of kind wall"
+case_ stop_when_not_measured 2 ":9: key 'time.stop_when.quantity': 'front_x' is not measured (add it to 'measure')"
+case_ stop_when_no_bound 2 ":9: key 'time.stop_when' needs one of 'above' and 'below'"
 case_ iisph_surface_threshold_potential 2 ":9: key 'surface_tension.surface_threshold': applies to model csf with csf_form: pressure only"
 case_ iisph_repulsion_out_of_range 2 ":7: key 'scheme.repulsion.distance': expected a number in [0, 1], got '2'"
 case_ interfacial_sigma_one_material 2 ":9: key 'surface_tension.interfacial_sigma': needs two fluid materials"

@@ -51,6 +51,17 @@ ls "$T/run" | grep -q "tmp" && bad "temporary files left in the output" || ok
     | grep -q "Giesekus: solvent nu 0.0001, polymer nu 0.0009 m^2/s, lambda 0.005 s, alpha 0.3" \
     && ok || bad "info does not report the Giesekus material"
 
+# time.stop_when: the run ends at the first output whose front lies beyond 0.4 m (about 0.14 s),
+# long before time.end, and says so; the rows before it stay below the value.
+"$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/stop" --threads 1 --set spacing=0.0125 \
+    --set time.end=0.5 --set time.output_interval=0.02 --set time.stop_when.quantity=front_x \
+    --set time.stop_when.above=0.4 > "$T/stop.log" 2>&1 && ok || bad "stop_when run failed: $(cat "$T/stop.log")"
+grep -q "^stopped at t = .*: front_x = .*, above 0.4 (time.stop_when)" "$T/stop.log" && ok \
+    || bad "stop_when: no stop line in $(cat "$T/stop.log")"
+awk -F, 'NR > 1 { n++; f[n] = $5; t = $1 } END { for (i = 1; i < n; ++i) if (f[i] > 0.4) exit 1;
+    exit !(f[n] > 0.4 && t > 0.05 && t < 0.3) }' "$T/stop/series.csv" && ok \
+    || bad "stop_when: series does not end at the first row beyond 0.4: $(cut -d, -f1,5 "$T/stop/series.csv")"
+
 # SIGINT: a long run stops cleanly, writes its state and exits 130.
 "$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/int" --set spacing=0.0125 --set time.dt_max=1e-5 \
     > "$T/int.log" 2>&1 &

@@ -1,0 +1,247 @@
+/* ryushi validate embolization3d: the coarse 3D embolization tank
+ * (cases/mps_embolization_3d_coarse.yaml, seed 003 Table 5, l0 = 0.2 mm) run until its droplet
+ * detaches (the case's time.stop_when; --quick: 0.5 s). The droplet's length, width and aspect
+ * ratio over time as the seed's figure 9 plots them, and the detachment time against the
+ * experiment (11.72 s), the seed's simulation (14.0 s) and Tate's law. The run takes hours on
+ * two cores: an interrupted one (Ctrl-C writes a checkpoint) goes on from its newest checkpoint
+ * when the command is given again. Table on stdout and in embolization3d.md, plots in
+ * embolization3d.png. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli/cli.h"
+#include "ryushi/atomic_file.h"
+#include "ryushi/case.h"
+#include "ryushi/plot.h"
+#include "ryushi/surface_tension.h"
+#include "ryushi/validate.h"
+
+/* The case's values (cases/mps_embolization_3d_coarse.yaml) and the seed's. */
+#define U_IN 8.5e-3         /* inflow [m/s] */
+#define BORE 4.0e-4         /* the square bore's side [m] */
+#define OUTER 8.0e-4        /* the square tip's outer side [m] */
+#define SEED_BORE 4.0e-4    /* the seed's round catheter: inner diameter [m] */
+#define SEED_OUTER 6.0e-4   /*   outer diameter [m] */
+#define SIGMA_AB 10.8e-3    /* interfacial tension [N/m] */
+#define DRHO (1182.0 - 1e3) /* density difference [kg/m^3] */
+#define G 9.8
+#define T_EXPERIMENT 11.72 /* the seed's experiment [s] */
+#define T_SEED_SIM 14.0    /* the seed's simulation [s] */
+
+static volatile sig_atomic_t stop_requested;
+static void on_signal(int sig) {
+    (void)sig;
+    stop_requested = 1;
+}
+
+static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
+    (void)ctx;
+    printf("  t = %.3f s, %.3g particle-steps/s, at most %.0f s to go\n", sim->t, rate, eta);
+    fflush(stdout);
+}
+
+/* Runs the case into odir, from the newest checkpoint there if there is one. */
+static ry_status run_or_resume(const char *cpath, int nset, const char *const *sets,
+                               const char *odir, ry_sim *sim, ry_run_stats *stats, ry_error *err) {
+    ry_case *c = NULL;
+    memset(sim, 0, sizeof *sim);
+    char ck[4200];
+    struct stat sb;
+    snprintf(ck, sizeof ck, "%s/checkpoints", odir);
+    const int resume = stat(ck, &sb) == 0 && S_ISDIR(sb.st_mode);
+    ry_status st = ry_case_load(&c, cpath, err);
+    for (int i = 0; i < nset && st == RY_OK; ++i) st = ry_case_override(c, sets[i], err);
+    if (st == RY_OK) st = ry_sim_setup(sim, c, odir, err);
+    if (st == RY_OK) st = ry_sim_open_output(sim, c, err);
+    char used[4300] = "";
+    if (st == RY_OK && resume) {
+        st = ry_sim_restart(sim, odir, used, sizeof used, NULL, 0, err);
+        if (st == RY_OK) printf("  resuming from %s (t = %.4g s)\n", used, sim->t);
+    }
+    if (st == RY_OK) {
+        fflush(stdout);
+        stop_requested = 0;
+        void (*old_int)(int) = signal(SIGINT, on_signal);
+        void (*old_term)(int) = signal(SIGTERM, on_signal);
+        ry_run_hooks hooks = {on_progress, NULL, 300.0, &stop_requested};
+        st = ry_sim_run(sim, &hooks, stats, err);
+        signal(SIGINT, old_int);
+        signal(SIGTERM, old_term);
+    }
+    ry_case_free(c);
+    if (st != RY_OK) ry_sim_free(sim);
+    return st;
+}
+
+static double *column(const ry_table *s, const char *name, double k) {
+    const int c = ry_table_col(s, name);
+    double *v = c >= 0 ? ry_table_column(s, c) : NULL;
+    for (size_t r = 0; v && r < s->nrows; ++r) v[r] *= k;
+    return v;
+}
+
+static void plot_figure(const ry_table *s, double t_det, const char *png, int *failures) {
+    ry_error err = {0};
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 2, 1300, 560, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+        return;
+    }
+    ry_plot_panel(p, 0, "Droplet below the tip (3D, l0 = 0.2 mm)", "t (s)", "mm", &err);
+    ry_plot_panel(p, 1, "Aspect ratio (length / width)", "t (s)", "", &err);
+    const size_t n = s->nrows;
+    double *t = column(s, "t", 1.0), *len = column(s, "droplet_length", 1e3),
+           *wid = column(s, "droplet_width", 1e3), *asp = column(s, "droplet_aspect", 1.0);
+    int ok = t && len && wid && asp && n > 1;
+    if (ok) {
+        ry_plot_series(p, 0, "length", n, t, len, ry_plot_style_line(), &err);
+        ry_plot_series(p, 0, "width", n, t, wid, ry_plot_style_line(), &err);
+        ry_plot_series(p, 1, "ryushi", n - 1, t + 1, asp + 1, ry_plot_style_line(), &err);
+        double ymax = 0;
+        for (size_t r = 0; r < n; ++r) ymax = fmax(ymax, fmax(len[r], wid[r]));
+        /* the detachment times as vertical marks */
+        const double marks[3] = {t_det, T_EXPERIMENT, T_SEED_SIM};
+        const char *names[3] = {"detached (ryushi)", "experiment 11.72 s",
+                                "seed's simulation 14.0 s"};
+        for (int k = 0; k < 3; ++k) {
+            if (!(marks[k] > 0) || marks[k] > 1.3 * t[n - 1]) continue;
+            const double xs[2] = {marks[k], marks[k]}, ys[2] = {0, ymax};
+            ry_plot_style st = ry_plot_style_line();
+            st.dash = (ry_plot_dash)(k + 1);
+            ry_plot_series(p, 0, names[k], 2, xs, ys, st, &err);
+        }
+        ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
+        ry_plot_legend(p, 1, RY_PLOT_LEGEND_NE, &err);
+    }
+    if (!ok || ry_plot_write_png(p, png, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", ok ? err.msg : "series lack a column");
+        ++*failures;
+    } else {
+        printf("  plot: %s\n", png);
+    }
+    free(t);
+    free(len);
+    free(wid);
+    free(asp);
+    ry_plot_free(p);
+}
+
+int ry_cli_validate_embolization3d(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
+    char cpath[4096], odir[4096], spath[4200], mdp[4096], png[4096];
+    snprintf(cpath, sizeof cpath, "%s/cases/mps_embolization_3d_coarse.yaml", root);
+    snprintf(odir, sizeof odir, "%s/embolization_3d_coarse%s", out, quick ? "_quick" : "");
+    snprintf(spath, sizeof spath, "%s/series.csv", odir);
+    snprintf(mdp, sizeof mdp, "%s/embolization3d.md", out);
+    snprintf(png, sizeof png, "%s/embolization3d.png", out);
+    printf("Liquid embolization, 3D, l0 = 0.2 mm (cases/mps_embolization_3d_coarse.yaml), %s\n",
+           quick ? "to 0.5 s" : "until the droplet detaches");
+    const char *sets[2] = {"output.vtk=false", "time.end=0.5"};
+    ry_sim sim;
+    ry_run_stats stats = {0};
+    ry_table s = {0};
+    if (run_or_resume(cpath, quick ? 2 : 1, sets, odir, &sim, &stats, &err) != RY_OK ||
+        ry_table_read(&s, spath, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s%s\n", err.msg,
+                err.code == RY_ERR_INTERRUPTED ? " (the same command goes on from there)" : "");
+        ++*failures;
+        return *failures;
+    }
+    const double wall = stats.wall_s;
+    const long steps = stats.steps;
+    const size_t np = sim.ps.n;
+    ry_sim_free(&sim);
+    const int ct = ry_table_col(&s, "t"), ci = ry_table_col(&s, "inflow_volume"),
+              cl = ry_table_col(&s, "droplet_length"), cw = ry_table_col(&s, "droplet_width"),
+              ca = ry_table_col(&s, "droplet_aspect"), cd = ry_table_col(&s, "droplet_detached"),
+              cs = ry_table_col(&s, "max_speed");
+    if (ct < 0 || ci < 0 || cl < 0 || cw < 0 || ca < 0 || cd < 0 || cs < 0 || s.nrows < 2) {
+        fprintf(stderr, "ryushi: validate: %s lacks a column or rows\n", spath);
+        ry_table_free(&s);
+        ++*failures;
+        return *failures;
+    }
+    const size_t last = s.nrows - 1;
+    const double t_end = ry_table_at(&s, last, ct), vin = ry_table_at(&s, last, ci);
+    const double q = U_IN * BORE * BORE, q_seed = U_IN * RY_PI * 0.25 * SEED_BORE * SEED_BORE;
+    double t_det = -1, v_det = NAN, vmax = 0, len_max = 0;
+    for (size_t r = 0; r < s.nrows; ++r) {
+        if (t_det < 0 && ry_table_at(&s, r, cd) > 0.5) {
+            t_det = ry_table_at(&s, r, ct);
+            v_det = ry_table_at(&s, r, ci);
+        }
+        if (t_det < 0) len_max = fmax(len_max, ry_table_at(&s, r, cl));
+        vmax = fmax(vmax, ry_table_at(&s, r, cs));
+    }
+    /* Tate's law: the droplet's weight in water reaches sigma times the tip's perimeter */
+    const double v_tate = SIGMA_AB * 4 * OUTER / (DRHO * G),
+                 v_tate_seed = SIGMA_AB * RY_PI * SEED_OUTER / (DRHO * G);
+    ry_atomic_file af = {0};
+    FILE *md = ry_atomic_open(&af, mdp, &err) == RY_OK ? af.fp : NULL;
+    printf("  %6s %12s %11s %7s %16s\n", "t [s]", "length [mm]", "width [mm]", "aspect",
+           "injected [mm^3]");
+    if (md)
+        fprintf(md, "| t [s] | length [mm] | width [mm] | aspect | injected [mm^3] |\n"
+                    "|---|---|---|---|---|\n");
+    double t_prev = 0;
+    for (size_t r = 1; r < s.nrows; ++r) {
+        const double tr = ry_table_at(&s, r, ct);
+        if ((fabs(tr - round(tr)) > 1e-6 && r != last) || tr == t_prev) continue;
+        t_prev = tr;
+        const double row[4] = {1e3 * ry_table_at(&s, r, cl), 1e3 * ry_table_at(&s, r, cw),
+                               ry_table_at(&s, r, ca), 1e9 * ry_table_at(&s, r, ci)};
+        printf("  %6.2f %12.2f %11.2f %7.2f %16.2f\n", tr, row[0], row[1], row[2], row[3]);
+        if (md)
+            fprintf(md, "| %.2f | %.2f | %.2f | %.2f | %.2f |\n", tr, row[0], row[1], row[2],
+                    row[3]);
+    }
+    char line[1024];
+    snprintf(line, sizeof line,
+             "injected %.4g m^3 against U A t = %.4g (%+.2f %%); largest speed %.3f m/s; "
+             "longest droplet before detaching %.2f mm",
+             vin, q * t_end, 100 * (vin / (q * t_end) - 1), vmax, 1e3 * len_max);
+    printf("  %s\n", line);
+    if (md) fprintf(md, "\n%s.\n", line);
+    if (t_det > 0)
+        snprintf(line, sizeof line,
+                 "detached at %.2f s: %+.1f %% against the experiment's %.2f s, %+.1f %% against "
+                 "the seed's simulation (%.1f s). Injected then: %.4g mm^3, which the seed's round "
+                 "bore (%.1f mm) delivers in %.2f s. Tate's law: %.4g mm^3 at this square tip "
+                 "(%.1f mm outside), reached at %.2f s; %.4g mm^3 at the seed's (%.1f mm), at "
+                 "%.2f s",
+                 t_det, 100 * (t_det / T_EXPERIMENT - 1), T_EXPERIMENT,
+                 100 * (t_det / T_SEED_SIM - 1), T_SEED_SIM, 1e9 * v_det, 1e3 * SEED_BORE,
+                 v_det / q_seed, 1e9 * v_tate, 1e3 * OUTER, v_tate / q, 1e9 * v_tate_seed,
+                 1e3 * SEED_OUTER, v_tate_seed / q_seed);
+    else
+        snprintf(line, sizeof line, "not detached by %.2f s", t_end);
+    printf("  %s\n", line);
+    if (md) {
+        fprintf(md, "\n%s. %ld steps, %zu particles, %.0f s of this run.\n", line, steps, np, wall);
+        if (ry_atomic_commit(&af, &err) != RY_OK) {
+            fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+            ++*failures;
+        } else {
+            printf("  table: %s\n", mdp);
+        }
+    }
+    /* the inlet lets in a layer of the bore's particles at a time */
+    const double layer = BORE * BORE * 2e-4;
+    ry_cli_check("injected volume within 1 % of U A t (or a layer of the bore)",
+                 fabs(vin - q * t_end) < fmax(0.01 * q * t_end, layer), failures);
+    ry_cli_check("largest speed below 0.3 m/s (a stable run)", vmax < 0.3, failures);
+    if (!quick) {
+        ry_cli_check("the droplet detaches", t_det > 0, failures);
+        ry_cli_check("detaches within 10 % of the experiment (11.72 s)",
+                     t_det > 0 && fabs(t_det / T_EXPERIMENT - 1) < 0.10, failures);
+    }
+    plot_figure(&s, t_det, png, failures);
+    ry_table_free(&s);
+    return *failures;
+}
