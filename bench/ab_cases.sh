@@ -15,7 +15,7 @@
 #   eye      cases/eye_posterior_drain.yaml to 0.15 s (IISPH, 3D, in- and outflow)
 #   iisph    cases/dam_break_mm_iisph.yaml to 0.1 s (IISPH, 2D)
 #   channel  cases/channel_inflow.yaml, 4 s (WCSPH, 2D, in- and outflow)
-#   mps3d    cases/mps_embolization_3d_coarse.yaml to 0.01 s (MPS, 3D, 100 steps)
+#   mps3d    cases/mps_embolization_3d_coarse.yaml to 0.01 s at dt = 1e-4 s (MPS, 3D, 100 steps)
 # Exit status: 0 on success, 1 with a message on stderr when a run fails.
 set -eu
 
@@ -37,7 +37,7 @@ case_args() {
     eye) echo "$ROOT/cases/eye_posterior_drain.yaml --set time.end=0.15" ;;
     iisph) echo "$ROOT/cases/dam_break_mm_iisph.yaml --set time.end=0.1" ;;
     channel) echo "$ROOT/cases/channel_inflow.yaml" ;;
-    mps3d) echo "$ROOT/cases/mps_embolization_3d_coarse.yaml --set time.end=0.01" ;;
+    mps3d) echo "$ROOT/cases/mps_embolization_3d_coarse.yaml --set time.end=0.01 --set time.dt_max=1e-4" ;;
     *)
         echo "ab_cases: error: unknown case '$1' (eye, iisph, channel, mps3d)" >&2
         exit 1

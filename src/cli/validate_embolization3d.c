@@ -74,7 +74,7 @@ static ry_status run_or_resume(const char *cpath, int nset, const char *const *s
         signal(SIGTERM, old_term);
     }
     ry_case_free(c);
-    if (st != RY_OK) ry_sim_free(sim);
+    if (st != RY_OK && st != RY_ERR_INTERRUPTED) ry_sim_free(sim);
     return st;
 }
 
@@ -85,10 +85,51 @@ static double *column(const ry_table *s, const char *name, double k) {
     return v;
 }
 
-static void plot_figure(const ry_table *s, double t_det, const char *png, int *failures) {
+/* Slice y = 0 of the tank around the tip (|y| < dx/2): walls, water and the embolic liquid as
+ * markers, x and z in mm. */
+static void tip_slice(ry_plot *p, int panel, const ry_sim *sim) {
+    ry_error err;
+    const ry_particles *ps = &sim->ps;
+    double *x = malloc(ps->n * sizeof *x), *z = malloc(ps->n * sizeof *z);
+    if (!x || !z) {
+        free(x);
+        free(z);
+        return;
+    }
+    char title[128];
+    snprintf(title, sizeof title, "Slice y = 0, t = %.2f s", sim->t);
+    ry_plot_panel(p, panel, title, "x [mm]", "z [mm]", &err);
+    const char *label[3] = {"wall", "water", "embolic liquid"};
+    const int color[3] = {7, 0, 1};
+    for (int set = 0; set < 3; ++set) {
+        size_t m = 0;
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (fabs(ps->f[RY_F_Y][i]) > 0.5 * sim->dx) continue;
+            const int k = ps->kind[i];
+            const int which =
+                k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
+            if (which != set) continue;
+            x[m] = 1e3 * ps->f[RY_F_X][i];
+            z[m++] = 1e3 * ps->f[RY_F_Z][i];
+        }
+        if (m == 0) continue;
+        ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
+        st.color = color[set];
+        st.marker_size = 7;
+        ry_plot_series(p, panel, label[set], m, x, z, st, &err);
+    }
+    ry_plot_xrange(p, panel, -2.6, 2.6, &err);
+    ry_plot_yrange(p, panel, -0.8, 9.2, &err);
+    ry_plot_legend(p, panel, RY_PLOT_LEGEND_SW, &err);
+    free(x);
+    free(z);
+}
+
+static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, const char *png,
+                        int *failures) {
     ry_error err = {0};
     ry_plot *p = NULL;
-    if (ry_plot_new(&p, 1, 2, 1300, 560, &err) != RY_OK) {
+    if (ry_plot_new(&p, 1, 3, 1800, 600, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", err.msg);
         ++*failures;
         return;
@@ -118,6 +159,7 @@ static void plot_figure(const ry_table *s, double t_det, const char *png, int *f
         }
         ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
         ry_plot_legend(p, 1, RY_PLOT_LEGEND_NE, &err);
+        tip_slice(p, 2, sim);
     }
     if (!ok || ry_plot_write_png(p, png, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", ok ? err.msg : "series lack a column");
@@ -146,17 +188,21 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
     ry_sim sim;
     ry_run_stats stats = {0};
     ry_table s = {0};
-    if (run_or_resume(cpath, quick ? 2 : 1, sets, odir, &sim, &stats, &err) != RY_OK ||
-        ry_table_read(&s, spath, &err) != RY_OK) {
-        fprintf(stderr, "ryushi: validate: %s%s\n", err.msg,
-                err.code == RY_ERR_INTERRUPTED ? " (the same command goes on from there)" : "");
+    /* an interrupted run (Ctrl-C) is reported as far as it went, and counts as a failure */
+    const ry_status rs = run_or_resume(cpath, quick ? 2 : 1, sets, odir, &sim, &stats, &err);
+    if (rs == RY_ERR_INTERRUPTED) {
+        fprintf(stderr, "ryushi: validate: %s; the same command goes on from there\n", err.msg);
+        ++*failures;
+    }
+    if ((rs != RY_OK && rs != RY_ERR_INTERRUPTED) || ry_table_read(&s, spath, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        if (rs == RY_OK || rs == RY_ERR_INTERRUPTED) ry_sim_free(&sim);
         ++*failures;
         return *failures;
     }
     const double wall = stats.wall_s;
     const long steps = stats.steps;
     const size_t np = sim.ps.n;
-    ry_sim_free(&sim);
     const int ct = ry_table_col(&s, "t"), ci = ry_table_col(&s, "inflow_volume"),
               cl = ry_table_col(&s, "droplet_length"), cw = ry_table_col(&s, "droplet_width"),
               ca = ry_table_col(&s, "droplet_aspect"), cd = ry_table_col(&s, "droplet_detached"),
@@ -164,6 +210,7 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
     if (ct < 0 || ci < 0 || cl < 0 || cw < 0 || ca < 0 || cd < 0 || cs < 0 || s.nrows < 2) {
         fprintf(stderr, "ryushi: validate: %s lacks a column or rows\n", spath);
         ry_table_free(&s);
+        ry_sim_free(&sim);
         ++*failures;
         return *failures;
     }
@@ -241,7 +288,8 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
         ry_cli_check("detaches within 10 % of the experiment (11.72 s)",
                      t_det > 0 && fabs(t_det / T_EXPERIMENT - 1) < 0.10, failures);
     }
-    plot_figure(&s, t_det, png, failures);
+    plot_figure(&s, &sim, t_det, png, failures);
     ry_table_free(&s);
+    ry_sim_free(&sim);
     return *failures;
 }

@@ -175,7 +175,9 @@ ry_status ry_sim_checkpoint_load(ry_sim *sim, const ry_ck_reader *r, ry_error *e
              "checkpoint %s: bad time, time step or step count", r->path);
     sim->step = (long)v;
     RY_TRY(ry_ck_get_i64(r, "time/finished", &v, err));
-    sim->finished = v != 0;
+    /* a run that time.stop_when ended goes on, and stops again at the next output where the
+     * condition (perhaps changed) holds */
+    sim->finished = v != 0 && sim->stop_probe < 0;
     RY_TRY(ry_ck_get_i64(r, "output/index", &v, err));
     RY_CHECK(err, v >= 0 && v < 100000000, RY_ERR_INPUT,
              "checkpoint %s: record 'output/index': bad value", r->path);

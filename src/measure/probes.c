@@ -142,7 +142,10 @@ static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
 /* Droplet at a nozzle (case section `droplet`: material and tip height along the last axis,
  * "up"): the particles of that material (fluid) form bodies, two particles being connected
  * when closer than 1.5 spacings (union-find over a cell search of its own). The attached body
- * is the union of the bodies that reach the nozzle (a particle at or above the tip). Values:
+ * is the union of the bodies that reach the nozzle (a particle above half a spacing under the
+ * tip: a droplet whose top still touches the tip hangs from it, even where a void in a narrow
+ * bore parts it from the liquid above, as in the coarse 3D tank's bore of 2 x 2 particles,
+ * docs/mps.md). Values:
  * [0] length: the tip less the attached body's lowest point (its lowest particle less half a
  * spacing), 0 when nothing hangs below the tip; [1] width: the largest horizontal extent of the
  * attached body below the tip plus one spacing (0 if none); [2] length / width (NAN if no width);
@@ -206,7 +209,7 @@ static ry_status droplet_measure(const ry_sim *sim, double out[4], ry_error *err
         if (IN_DROP(i)) {
             const uint32_t r = uf_find(parent, (uint32_t)i);
             count[r]++;
-            if (x[up][i] >= tip) flags[r] = 1;
+            if (x[up][i] >= tip - 0.5 * sim->dx) flags[r] = 1;
         }
     double low = INFINITY, lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     int detached = 0;

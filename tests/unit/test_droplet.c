@@ -61,6 +61,15 @@ static void test_attached_and_detached(void **state) {
     assert_float_equal(eval(&sim, "droplet_width"), 8.0e-4, 1e-12);
     assert_float_equal(eval(&sim, "droplet_aspect"), 0.75, 1e-9);
     assert_true(eval(&sim, "droplet_detached") == 0);
+    /* A void in the bore: the liquid above the tip moved up by three spacings. The droplet's
+     * top (0.95 mm) still touches the tip, so it hangs from it, with the same size. */
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.material[i] == 1 && sim.ps.f[RY_F_Y][i] >= 1.0e-3) sim.ps.f[RY_F_Y][i] += 3e-4;
+    assert_true(eval(&sim, "droplet_detached") == 0);
+    assert_float_equal(eval(&sim, "droplet_length"), 6.0e-4, 1e-12);
+    assert_float_equal(eval(&sim, "droplet_width"), 8.0e-4, 1e-12);
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.material[i] == 1 && sim.ps.f[RY_F_Y][i] >= 1.0e-3) sim.ps.f[RY_F_Y][i] -= 3e-4;
     /* The droplet moved down by three spacings: it is cut off from the nozzle. */
     for (size_t i = 0; i < sim.ps.n; ++i)
         if (sim.ps.material[i] == 1 && sim.ps.f[RY_F_Y][i] < 1.0e-3) sim.ps.f[RY_F_Y][i] -= 3e-4;
