@@ -4,6 +4,7 @@
 
 #include "ryushi/csv.h"
 #include "ryushi/plot.h"
+#include "ryushi/sim.h"
 
 int ry_cli_bench(int argc, char **argv);
 int ry_cli_plot(int argc, char **argv);
@@ -26,6 +27,10 @@ int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failu
 int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *failures);
 /* Prints a validation check's line (PASS or FAIL) and counts a failure. */
 void ry_cli_check(const char *what, int ok, int *failures);
+/* Markers of the particles of a 3D run within half of the plane y = 0 into a panel, x and z in
+ * mm: walls, the first and the second material, labelled label[0..2] when legend is set. */
+void ry_cli_slice_markers(ry_plot *p, int panel, const ry_sim *sim, double half,
+                          const char *const label[3], int legend);
 /* The 2D embolization tank: droplet, volumes, Tate's law (validate_embolization.c). */
 int ry_cli_validate_embolization(const char *root, const char *out, int quick, int *failures);
 /* The coarse 3D embolization tank until its droplet detaches, resumable

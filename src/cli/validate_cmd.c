@@ -397,6 +397,33 @@ static int validate_channel(vctx *v) {
     return 0;
 }
 
+void ry_cli_slice_markers(ry_plot *p, int panel, const ry_sim *sim, double half,
+                          const char *const label[3], int legend) {
+    ry_error err;
+    const ry_particles *ps = &sim->ps;
+    double *x = malloc(ps->n * sizeof *x), *z = malloc(ps->n * sizeof *z);
+    const int color[3] = {7, 0, 1};
+    for (int set = 0; x && z && set < 3; ++set) {
+        size_t m = 0;
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (fabs(ps->f[RY_F_Y][i]) > half) continue;
+            const int k = ps->kind[i];
+            const int which =
+                k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
+            if (which != set) continue;
+            x[m] = 1e3 * ps->f[RY_F_X][i];
+            z[m++] = 1e3 * ps->f[RY_F_Z][i];
+        }
+        if (m == 0) continue;
+        ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
+        st.color = color[set];
+        st.marker_size = 6;
+        ry_plot_series(p, panel, legend ? label[set] : NULL, m, x, z, st, &err);
+    }
+    free(x);
+    free(z);
+}
+
 void ry_cli_check(const char *what, int ok, int *failures) {
     printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
     if (!ok) ++*failures;

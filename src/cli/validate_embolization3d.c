@@ -89,40 +89,14 @@ static double *column(const ry_table *s, const char *name, double k) {
  * markers, x and z in mm. */
 static void tip_slice(ry_plot *p, int panel, const ry_sim *sim) {
     ry_error err;
-    const ry_particles *ps = &sim->ps;
-    double *x = malloc(ps->n * sizeof *x), *z = malloc(ps->n * sizeof *z);
-    if (!x || !z) {
-        free(x);
-        free(z);
-        return;
-    }
     char title[128];
     snprintf(title, sizeof title, "Slice y = 0, t = %.2f s", sim->t);
     ry_plot_panel(p, panel, title, "x [mm]", "z [mm]", &err);
-    const char *label[3] = {"wall", "water", "embolic liquid"};
-    const int color[3] = {7, 0, 1};
-    for (int set = 0; set < 3; ++set) {
-        size_t m = 0;
-        for (size_t i = 0; i < ps->n; ++i) {
-            if (fabs(ps->f[RY_F_Y][i]) > 0.5 * sim->dx) continue;
-            const int k = ps->kind[i];
-            const int which =
-                k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
-            if (which != set) continue;
-            x[m] = 1e3 * ps->f[RY_F_X][i];
-            z[m++] = 1e3 * ps->f[RY_F_Z][i];
-        }
-        if (m == 0) continue;
-        ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
-        st.color = color[set];
-        st.marker_size = 7;
-        ry_plot_series(p, panel, label[set], m, x, z, st, &err);
-    }
+    const char *const label[3] = {"wall", "water", "embolic liquid"};
+    ry_cli_slice_markers(p, panel, sim, 0.5 * sim->dx, label, 1);
     ry_plot_xrange(p, panel, -2.6, 2.6, &err);
     ry_plot_yrange(p, panel, -0.8, 9.2, &err);
     ry_plot_legend(p, panel, RY_PLOT_LEGEND_SW, &err);
-    free(x);
-    free(z);
 }
 
 static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, const char *png,

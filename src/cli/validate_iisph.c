@@ -391,40 +391,14 @@ static void rayleigh_taylor(const char *root, const char *out, int quick, int *f
 static void eye_slice(ry_plot *p, int panel, int legend, const ry_sim *sim, const char *what,
                       double t) {
     ry_error err;
-    const ry_particles *ps = &sim->ps;
-    double *x = malloc(ps->n * sizeof *x), *z = malloc(ps->n * sizeof *z);
-    if (!x || !z) {
-        free(x);
-        free(z);
-        return;
-    }
     char title[128];
     snprintf(title, sizeof title, "%s, t = %.2f s", what, t);
     ry_plot_panel(p, panel, title, "x [mm] (patient's left)", "z [mm] (anterior)", &err);
-    const char *label[3] = {"wall", "saline", "silicone oil"};
-    const int color[3] = {7, 0, 1};
-    for (int set = 0; set < 3; ++set) {
-        size_t m = 0;
-        for (size_t i = 0; i < ps->n; ++i) {
-            if (fabs(ps->f[RY_F_Y][i]) > sim->dx) continue;
-            const int k = ps->kind[i];
-            const int which =
-                k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
-            if (which != set) continue;
-            x[m] = 1e3 * ps->f[RY_F_X][i];
-            z[m++] = 1e3 * ps->f[RY_F_Z][i];
-        }
-        if (m == 0) continue;
-        ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
-        st.color = color[set];
-        st.marker_size = 6;
-        ry_plot_series(p, panel, legend ? label[set] : NULL, m, x, z, st, &err);
-    }
+    const char *const label[3] = {"wall", "saline", "silicone oil"};
+    ry_cli_slice_markers(p, panel, sim, sim->dx, label, legend);
     ry_plot_xrange(p, panel, -25, 25, &err);
     ry_plot_yrange(p, panel, -25, 20, &err);
     ry_plot_legend(p, panel, legend ? RY_PLOT_LEGEND_SW : RY_PLOT_LEGEND_NONE, &err);
-    free(x);
-    free(z);
 }
 
 /* The filling at one output: filled fraction, oil-wall contact and the oil's share of the
