@@ -304,6 +304,7 @@ static ry_status colour_accelerate(ry_sim *sim, mps *M, double *const a[3], ry_e
         M->cacc = b + n;
         M->ccap = n;
     }
+    M->pc.cut = M->st.cut; /* no pairs across a thin wall */
     RY_TRY(ry_pair_cache_fill(&M->pc, sim, need, err));
     /* The SPH number density over every neighbour, the particle itself included. */
     const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);

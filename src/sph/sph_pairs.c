@@ -52,7 +52,7 @@ ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int nee
                 if (periodic) ry_box_min_image(&sim->box, dx);
                 for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
                 in[c] = (uint32_t)(q - off[i]);
-                c += (r2 < rad2) & (r2 > 0);
+                c += (r2 < rad2) & (r2 > 0) & !(pc->cut && pc->cut[q]);
             }
             for (size_t e = 0; e < c; ++e) {
                 const size_t q = off[i] + in[e];

@@ -17,6 +17,8 @@ typedef struct ry_pair_cache {
     uint32_t *j; /* the neighbour of each entry */
     size_t *end; /* per particle: the end of its row */
     size_t cap, cap_n;
+    const uint8_t *cut; /* set by the caller, or NULL: entries of the neighbour list to leave
+                           out (MPS: the pairs across a thin wall) */
 } ry_pair_cache;
 
 /* Fills the cache for the rows of the particles with need[kind] set (other rows are empty). */
