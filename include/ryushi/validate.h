@@ -7,6 +7,11 @@
 #include "ryushi/csv.h"
 #include "ryushi/sim.h"
 
+/* Loads a case file, applies overrides ("key=value") and sets it up with its output open in
+ * out_dir, ready to run. On failure sim is freed. */
+ry_status ry_setup_case_file(const char *path, int nset, const char *const *sets,
+                             const char *out_dir, ry_sim *sim, ry_error *err);
+
 /* Loads a case file, applies overrides ("key=value"), sets it up with output in out_dir and
  * runs it. On success sim holds the final state (the caller frees it with ry_sim_free). */
 ry_status ry_run_case_file(const char *path, int nset, const char *const *sets, const char *out_dir,

@@ -27,6 +27,9 @@ int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failu
 int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *failures);
 /* Prints a validation check's line (PASS or FAIL) and counts a failure. */
 void ry_cli_check(const char *what, int ok, int *failures);
+/* A series column times k in a new array (the caller frees it); NULL when the column is
+ * missing. */
+double *ry_cli_scaled_column(const ry_table *s, const char *name, double k);
 /* Markers of the particles of a 3D run within half of the plane y = 0 into a panel, x and z in
  * mm: walls, the first and the second material, labelled label[0..2] when legend is set. */
 void ry_cli_slice_markers(ry_plot *p, int panel, const ry_sim *sim, double half,

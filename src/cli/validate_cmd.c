@@ -424,6 +424,13 @@ void ry_cli_slice_markers(ry_plot *p, int panel, const ry_sim *sim, double half,
     free(z);
 }
 
+double *ry_cli_scaled_column(const ry_table *s, const char *name, double k) {
+    const int c = ry_table_col(s, name);
+    double *v = c >= 0 ? ry_table_column(s, c) : NULL;
+    for (size_t r = 0; v && r < s->nrows; ++r) v[r] *= k;
+    return v;
+}
+
 void ry_cli_check(const char *what, int ok, int *failures) {
     printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
     if (!ok) ++*failures;

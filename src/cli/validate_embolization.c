@@ -24,14 +24,6 @@
 #define DRHO (1182.0 - 1e3) /* density difference [kg/m^3] */
 #define G 9.8
 
-/* Series columns scaled into new arrays (NULL when the column is missing). */
-static double *scaled(const ry_table *s, const char *name, double k) {
-    const int c = ry_table_col(s, name);
-    double *v = c >= 0 ? ry_table_column(s, c) : NULL;
-    for (size_t r = 0; v && r < s->nrows; ++r) v[r] *= k;
-    return v;
-}
-
 typedef struct model_run {
     const char *label, *sub;
     int nset;
@@ -56,9 +48,12 @@ static void plot_figure(model_run *runs, int nruns, const char *png, int *failur
         if (!runs[k].ok) continue;
         const ry_table *s = &runs[k].s;
         const size_t n = s->nrows;
-        double *t = scaled(s, "t", 1.0), *len = scaled(s, "droplet_length", 1e3),
-               *wid = scaled(s, "droplet_width", 1e3), *asp = scaled(s, "droplet_aspect", 1.0),
-               *vin = scaled(s, "inflow_volume", 1e6), *vout = scaled(s, "outflow_volume", 1e6),
+        double *t = ry_cli_scaled_column(s, "t", 1.0),
+               *len = ry_cli_scaled_column(s, "droplet_length", 1e3),
+               *wid = ry_cli_scaled_column(s, "droplet_width", 1e3),
+               *asp = ry_cli_scaled_column(s, "droplet_aspect", 1.0),
+               *vin = ry_cli_scaled_column(s, "inflow_volume", 1e6),
+               *vout = ry_cli_scaled_column(s, "outflow_volume", 1e6),
                *ref = malloc(n * sizeof *ref);
         char lab[128];
         if (t && len && wid && asp && vin && vout && ref) {

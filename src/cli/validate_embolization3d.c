@@ -16,7 +16,6 @@
 
 #include "cli/cli.h"
 #include "ryushi/atomic_file.h"
-#include "ryushi/case.h"
 #include "ryushi/plot.h"
 #include "ryushi/surface_tension.h"
 #include "ryushi/validate.h"
@@ -48,18 +47,14 @@ static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
 /* Runs the case into odir, from the newest checkpoint there if there is one. */
 static ry_status run_or_resume(const char *cpath, int nset, const char *const *sets,
                                const char *odir, ry_sim *sim, ry_run_stats *stats, ry_error *err) {
-    ry_case *c = NULL;
-    memset(sim, 0, sizeof *sim);
     char ck[4200];
     struct stat sb;
     snprintf(ck, sizeof ck, "%s/checkpoints", odir);
     const int resume = stat(ck, &sb) == 0 && S_ISDIR(sb.st_mode);
-    ry_status st = ry_case_load(&c, cpath, err);
-    for (int i = 0; i < nset && st == RY_OK; ++i) st = ry_case_override(c, sets[i], err);
-    if (st == RY_OK) st = ry_sim_setup(sim, c, odir, err);
-    if (st == RY_OK) st = ry_sim_open_output(sim, c, err);
+    RY_TRY(ry_setup_case_file(cpath, nset, sets, odir, sim, err));
+    ry_status st = RY_OK;
     char used[4300] = "";
-    if (st == RY_OK && resume) {
+    if (resume) {
         st = ry_sim_restart(sim, odir, used, sizeof used, NULL, 0, err);
         if (st == RY_OK) printf("  resuming from %s (t = %.4g s)\n", used, sim->t);
     }
@@ -73,16 +68,8 @@ static ry_status run_or_resume(const char *cpath, int nset, const char *const *s
         signal(SIGINT, old_int);
         signal(SIGTERM, old_term);
     }
-    ry_case_free(c);
     if (st != RY_OK && st != RY_ERR_INTERRUPTED) ry_sim_free(sim);
     return st;
-}
-
-static double *column(const ry_table *s, const char *name, double k) {
-    const int c = ry_table_col(s, name);
-    double *v = c >= 0 ? ry_table_column(s, c) : NULL;
-    for (size_t r = 0; v && r < s->nrows; ++r) v[r] *= k;
-    return v;
 }
 
 /* Slice y = 0 of the tank around the tip (|y| < dx/2): walls, water and the embolic liquid as
@@ -111,8 +98,10 @@ static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, cons
     ry_plot_panel(p, 0, "Droplet below the tip (3D, l0 = 0.2 mm)", "t (s)", "mm", &err);
     ry_plot_panel(p, 1, "Aspect ratio (length / width)", "t (s)", "", &err);
     const size_t n = s->nrows;
-    double *t = column(s, "t", 1.0), *len = column(s, "droplet_length", 1e3),
-           *wid = column(s, "droplet_width", 1e3), *asp = column(s, "droplet_aspect", 1.0);
+    double *t = ry_cli_scaled_column(s, "t", 1.0),
+           *len = ry_cli_scaled_column(s, "droplet_length", 1e3),
+           *wid = ry_cli_scaled_column(s, "droplet_width", 1e3),
+           *asp = ry_cli_scaled_column(s, "droplet_aspect", 1.0);
     int ok = t && len && wid && asp && n > 1;
     if (ok) {
         ry_plot_series(p, 0, "length", n, t, len, ry_plot_style_line(), &err);

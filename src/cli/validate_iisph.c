@@ -417,18 +417,9 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
     char cpath[4096], odir[4096];
     snprintf(cpath, sizeof cpath, "%s/%s", root, case_file);
     snprintf(odir, sizeof odir, "%s/%s", out, sub);
-    ry_case *c = NULL;
     ry_sim sim;
-    memset(&sim, 0, sizeof sim);
-    ry_status st = ry_case_load(&c, cpath, err);
-    for (int i = 0; i < nset && st == RY_OK; ++i) st = ry_case_override(c, sets[i], err);
-    if (st == RY_OK) st = ry_sim_setup(&sim, c, odir, err);
-    if (st == RY_OK) st = ry_sim_open_output(&sim, c, err);
-    ry_case_free(c);
-    if (st != RY_OK) {
-        ry_sim_free(&sim);
-        return st;
-    }
+    ry_status st = ry_setup_case_file(cpath, nset, sets, odir, &sim, err);
+    if (st != RY_OK) return st;
     printf("  %s (%s, %zu particles):\n", what, case_file, sim.ps.n);
     printf("  %8s %8s %10s %10s %10s %9s %9s\n", "t [s]", "steps", "filled", "oil-wall", "oil kept",
            "wall [s]", "iters");
