@@ -82,6 +82,10 @@ typedef struct mps {
     int wall_mode;             /* walls in the viscous terms: own velocity, mirrored, slip */
     double *wd;                /* with it: distance of each particle to the wall surface */
     ry_csr A;
+    long defl;          /* scheme.solver.deflation: aggregate side in spacings (0: none) */
+    ry_csr_deflation D; /* with it: the pressure solve's aggregates */
+    int32_t *dmap;      /*   and the aggregate of each cell of their grid */
+    size_t dmap_cap;
     int32_t *unk; /* unknown index per particle, -1 if none */
     uint8_t *role;
     double *b, *xs;
@@ -362,6 +366,8 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(
         ry_case_double(c, "scheme.solver.viscosity_tolerance", &vtol, 1e-14, 1e-2, &M->vtol, err));
     RY_TRY(ry_case_int(c, "scheme.solver.max_iterations", &maxit, 10, 1000000, &M->max_iter, err));
+    long defl = 0;
+    RY_TRY(ry_case_int(c, "scheme.solver.deflation", &defl, 0, 1000, &M->defl, err));
     M->re_g *= l0;
     M->re_l *= l0;
     RY_TRY(ry_st_read(&M->st, c, sim->dim, l0, 3.1, 6.0, err));
@@ -405,6 +411,8 @@ static void mps_free(void *state) {
     mps *M = state;
     if (!M) return;
     ry_csr_free(&M->A);
+    ry_csr_deflation_free(&M->D);
+    free(M->dmap);
     free(M->unk);
     free(M->role);
     free(M->b);
@@ -1242,6 +1250,67 @@ static void surface_head(ry_sim *sim, mps *M) {
     if (sim->par) sim->par->sync(sim, M->pd, 1);
 }
 
+/* The aggregates of the deflated pressure solve: the unknowns grouped by the cubes of side
+ * defl spacings they lie in (a grid over their bounding box; empty cubes take no aggregate),
+ * numbered in the grid's order, so that the coarse matrix is banded (neighbouring cubes differ
+ * by at most a layer of the grid). Where that gives more than MAX_AGG aggregates the side
+ * doubles. */
+enum { MAX_AGG = 4000 };
+static ry_status aggregates(const ry_sim *sim, mps *M, size_t nunk, ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    int first = 1;
+    for (size_t i = 0; i < n; ++i) {
+        if (M->unk[i] < 0) continue;
+        for (int d = 0; d < dim; ++d) {
+            const double v = ps->f[RY_F_X + d][i];
+            if (first || v < lo[d]) lo[d] = v;
+            if (first || v > hi[d]) hi[d] = v;
+        }
+        first = 0;
+    }
+    M->D.m = 0; /* (positions not finite: no deflation; the solve reports the failure) */
+    for (int d = 0; d < dim; ++d)
+        if (!isfinite(lo[d]) || !isfinite(hi[d])) return RY_OK;
+    RY_TRY(ry_csr_deflation_reserve(&M->D, nunk, MAX_AGG, err));
+    for (double side = (double)M->defl * sim->dx;; side *= 2) {
+        size_t nc[3] = {1, 1, 1}, cells = 1;
+        double span = 1;
+        for (int d = 0; d < dim; ++d) span *= floor((hi[d] - lo[d]) / side) + 1;
+        if (span > 64.0 * (double)nunk + 4096) continue; /* a grid far finer than the unknowns */
+        for (int d = 0; d < dim; ++d) {
+            nc[d] = (size_t)floor((hi[d] - lo[d]) / side) + 1;
+            cells *= nc[d];
+        }
+        if (cells > M->dmap_cap) {
+            int32_t *p = realloc(M->dmap, cells * sizeof *p);
+            RY_CHECK(err, p, RY_ERR_NOMEM, "out of memory (deflation grid: %zu cells)", cells);
+            M->dmap = p;
+            M->dmap_cap = cells;
+        }
+        for (size_t k = 0; k < cells; ++k) M->dmap[k] = -1;
+        for (size_t i = 0; i < n; ++i) { /* the cell of each unknown (in agg for now) */
+            if (M->unk[i] < 0) continue;
+            size_t cell = 0;
+            for (int d = dim - 1; d >= 0; --d) {
+                const double f = floor((ps->f[RY_F_X + d][i] - lo[d]) / side);
+                cell = cell * nc[d] + (f <= 0 ? 0 : f >= (double)nc[d] ? nc[d] - 1 : (size_t)f);
+            }
+            M->dmap[cell] = 0;
+            M->D.agg[M->unk[i]] = (uint32_t)cell;
+        }
+        size_t m = 0;
+        for (size_t k = 0; k < cells; ++k)
+            if (M->dmap[k] == 0) M->dmap[k] = (int32_t)++m;
+        if (m > MAX_AGG) continue;
+        for (size_t u = 0; u < nunk; ++u) M->D.agg[u] = (uint32_t)(M->dmap[M->D.agg[u]] - 1);
+        M->D.m = m;
+        return RY_OK;
+    }
+}
+
 /* Pressure Poisson equation at x*: unknowns are the inner fluid and the wall particles. */
 static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     ry_particles *ps = &sim->ps;
@@ -1288,8 +1357,15 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     int it;
     double res;
     ry_csr_dist dd;
-    RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->tol, (int)M->max_iter, &it, &res, dist_of(sim, M, &dd),
-                      err));
+    if (M->defl > 0 && !sim->par) {
+        const double *bb = M->b;
+        RY_TRY(aggregates(sim, M, nunk, err));
+        RY_TRY(ry_csr_pcg_deflated(&M->A, 1, &bb, &M->xs, &M->D, M->tol, (int)M->max_iter, &it,
+                                   &res, err));
+    } else {
+        RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->tol, (int)M->max_iter, &it, &res,
+                          dist_of(sim, M, &dd), err));
+    }
     M->last_iters = it;
     M->total_iters += it;
     double *p = ps->f[RY_F_P];

@@ -1,5 +1,6 @@
 /* CSR matrix and Jacobi-preconditioned conjugate gradients (Hestenes & Stiefel 1952; the
- * preconditioned form as in Saad, Iterative Methods for Sparse Linear Systems, alg. 9.1). */
+ * preconditioned form as in Saad, Iterative Methods for Sparse Linear Systems, alg. 9.1),
+ * optionally deflated on aggregates of unknowns (Nicolaides 1987; Tang et al. 2009). */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -108,13 +109,22 @@ static double ddot(const ry_csr_dist *d, const double *x, const double *y, size_
 typedef struct pcg_one {
     const double *b;
     double *x, *r, *z, *p, *q;
+    double *u, *w; /* deflated: b - A x~ and P A p */
     double bnorm, rz, rn;
     int iters, done;
 } pcg_one;
 
-ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *const x[], double tol,
-                           int max_iter, int iters[], double resid[], const ry_csr_dist *dist,
-                           ry_error *err) {
+/* Defined with the deflation below. */
+static int deflation_setup(const ry_csr *a, ry_csr_deflation *d);
+static void coarse_solve(const ry_csr_deflation *d, const double *v);
+static void deflate(const ry_csr *a, const ry_csr_deflation *d, const double *v, double *out);
+
+/* Conjugate gradients for m systems with one matrix, deflated by d where d is not NULL
+ * (DEF1 of Tang et al.: the iterate x~ solves P A x~ = P b, and x = x~ + Z E^-1 Z^T (b - A x~)
+ * at the end, whose residual is the deflated residual r, so the stop is the same). */
+static ry_status pcg_core(ry_csr *a, int m, const double *const b[], double *const x[],
+                          ry_csr_deflation *d, double tol, int max_iter, int iters[],
+                          double resid[], const ry_csr_dist *dist, ry_error *err) {
     RY_CHECK(err, m >= 1 && m <= RY_CSR_MAX_RHS, RY_ERR_INTERNAL,
              "conjugate gradients: %d right-hand sides (1 to %d)", m, RY_CSR_MAX_RHS);
     const size_t n = a->n;
@@ -125,12 +135,36 @@ ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *co
     pcg_one s[RY_CSR_MAX_RHS];
     for (int k = 0; k < m; ++k) {
         double *w = a->work + 4 * (size_t)k * n;
-        s[k] = (pcg_one){b[k], x[k], w, w + n, w + 2 * n, w + 3 * n, 0, 0, 0, 0, 0};
+        s[k] = (pcg_one){b[k], x[k], w, w + n, w + 2 * n, w + 3 * n, NULL, NULL, 0, 0, 0, 0, 0};
         iters[k] = 0;
         resid[k] = 0;
     }
     /* (a distributed system goes on with no local unknowns: the others' sums need this one) */
     if (n == 0 && !dist) return RY_OK;
+    if (d && (d->m == 0 || dist)) d = NULL;
+    if (d) {
+        RY_CHECK(err, d->cap_n > n && d->cap_m > d->m && d->cap_u >= 2 * RY_CSR_MAX_RHS * (n + 1),
+                 RY_ERR_INTERNAL,
+                 "deflation: room for %zu unknowns and %zu aggregates, not %zu and %zu", d->cap_n,
+                 d->cap_m, n, d->m);
+        const size_t nz = a->row[n];
+        size_t cz = d->cap_nz, cz2 = d->cap_nz;
+        int ok = grow((void **)&d->azc, &cz, nz, sizeof *d->azc) &&
+                 grow((void **)&d->azv, &cz2, nz, sizeof *d->azv);
+        if (ok) {
+            double *e = realloc(d->e, d->m * d->m * sizeof *e);
+            ok = e != NULL;
+            if (e) d->e = e;
+        }
+        RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (deflation: %zu entries, %zu aggregates)",
+                 nz, d->m);
+        d->cap_nz = cz < cz2 ? cz : cz2;
+        if (!deflation_setup(a, d)) d = NULL; /* E not positive definite in floating point */
+        for (int k = 0; d && k < m; ++k) {
+            s[k].u = d->u + 2 * (size_t)k * n;
+            s[k].w = s[k].u + n;
+        }
+    }
     const double *in[RY_CSR_MAX_RHS];
     double *out[RY_CSR_MAX_RHS];
     int na = 0;
@@ -152,9 +186,18 @@ ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *co
         if (o->done) continue;
         double *r = o->r, *z = o->z, *p = o->p;
         const double *q = o->q, *bb = o->b;
+        if (d) {
+            double *u = o->u;
+#pragma omp parallel for schedule(static) if (n > 4096)
+            for (size_t i = 0; i < n; ++i) u[i] = bb[i] - q[i];
+            coarse_solve(d, u);
+            deflate(a, d, u, r);
+        } else {
+#pragma omp parallel for schedule(static) if (n > 4096)
+            for (size_t i = 0; i < n; ++i) r[i] = bb[i] - q[i];
+        }
 #pragma omp parallel for schedule(static) if (n > 4096)
         for (size_t i = 0; i < n; ++i) {
-            r[i] = bb[i] - q[i];
             z[i] = r[i] / a->diag[i];
             p[i] = z[i];
         }
@@ -176,18 +219,27 @@ ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *co
         csr_mul_any(a, na, in, out);
         for (int k = 0; k < na; ++k) {
             pcg_one *o = act[k];
-            double *xx = o->x, *r = o->r, *z = o->z, *p = o->p;
-            const double *q = o->q;
-            const double pq = ddot(dist, p, q, n);
+            double *xx = o->x, *r = o->r, *z = o->z, *p = o->p, *u = o->u;
+            const double *q = o->q, *w = o->q;
+            if (d) {
+                coarse_solve(d, q);
+                deflate(a, d, q, o->w);
+                w = o->w;
+            }
+            const double pq = ddot(dist, p, w, n);
             RY_CHECK(err, pq > 0 && isfinite(pq), RY_ERR_UNSTABLE,
                      "conjugate gradients broke down after %d iterations (p.Ap = %g: the matrix "
                      "is not positive definite)",
                      o->iters, pq);
             const double alpha = o->rz / pq;
+            if (d) {
+#pragma omp parallel for schedule(static) if (n > 4096)
+                for (size_t i = 0; i < n; ++i) u[i] -= alpha * q[i];
+            }
 #pragma omp parallel for schedule(static) if (n > 4096)
             for (size_t i = 0; i < n; ++i) {
                 xx[i] += alpha * p[i];
-                r[i] -= alpha * q[i];
+                r[i] -= alpha * w[i];
                 z[i] = r[i] / a->diag[i];
             }
             const double rz1 = ddot(dist, r, z, n);
@@ -202,6 +254,12 @@ ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *co
     for (int k = 0; k < m; ++k) {
         const pcg_one *o = &s[k];
         if (o->done) continue;
+        if (d) { /* x = x~ + Z E^-1 Z^T (b - A x~) */
+            coarse_solve(d, o->u);
+            double *xx = o->x;
+#pragma omp parallel for schedule(static) if (n > 4096)
+            for (size_t i = 0; i < n; ++i) xx[i] += d->c[d->agg[i]];
+        }
         iters[k] = o->iters;
         resid[k] = o->rn / o->bnorm;
         RY_CHECK(err, o->rn <= tol * o->bnorm, RY_ERR_UNSTABLE,
@@ -210,6 +268,18 @@ ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *co
                  o->iters, o->rn / o->bnorm, tol);
     }
     return RY_OK;
+}
+
+ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *const x[], double tol,
+                           int max_iter, int iters[], double resid[], const ry_csr_dist *dist,
+                           ry_error *err) {
+    return pcg_core(a, m, b, x, NULL, tol, max_iter, iters, resid, dist, err);
+}
+
+ry_status ry_csr_pcg_deflated(ry_csr *a, int m, const double *const b[], double *const x[],
+                              ry_csr_deflation *d, double tol, int max_iter, int iters[],
+                              double resid[], ry_error *err) {
+    return pcg_core(a, m, b, x, d, tol, max_iter, iters, resid, NULL, err);
 }
 
 ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_iter, int *iters,
@@ -240,4 +310,145 @@ const ry_csr_dist *ry_particle_dist(ry_particle_unknowns *pu, ry_csr_dist *d) {
         if (pu->unk[i] >= 0) pu->own[pu->unk[i]] = !ry_sim_is_halo(sim, i);
     *d = (ry_csr_dist){pu->own, particle_sync, particle_sum, pu};
     return d;
+}
+
+ry_status ry_csr_deflation_reserve(ry_csr_deflation *d, size_t n, size_t m, ry_error *err) {
+    /* every array of a kind grows together: one capacity each for n, m and u */
+    size_t cn[3] = {d->cap_n, d->cap_n, d->cap_n}, cm[3] = {d->cap_m, d->cap_m, d->cap_m};
+    size_t cu = d->cap_u;
+    int ok = grow((void **)&d->agg, &cn[0], n + 1, sizeof *d->agg) &&
+             grow((void **)&d->rows, &cn[1], n + 1, sizeof *d->rows) &&
+             grow((void **)&d->azn, &cn[2], n + 1, sizeof *d->azn) &&
+             grow((void **)&d->u, &cu, 2 * RY_CSR_MAX_RHS * (n + 1), sizeof *d->u) &&
+             grow((void **)&d->start, &cm[0], m + 1, sizeof *d->start) &&
+             grow((void **)&d->cur, &cm[1], m + 1, sizeof *d->cur) &&
+             grow((void **)&d->c, &cm[2], m + 1, sizeof *d->c);
+    RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (deflation: %zu unknowns, %zu aggregates)", n,
+             m);
+    d->cap_n = cn[0];
+    d->cap_m = cm[0];
+    d->cap_u = cu;
+    for (int k = 1; k < 3; ++k) {
+        if (cn[k] < d->cap_n) d->cap_n = cn[k];
+        if (cm[k] < d->cap_m) d->cap_m = cm[k];
+    }
+    return RY_OK;
+}
+
+void ry_csr_deflation_free(ry_csr_deflation *d) {
+    free(d->agg);
+    free(d->start);
+    free(d->cur);
+    free(d->rows);
+    free(d->azn);
+    free(d->azc);
+    free(d->azv);
+    free(d->e);
+    free(d->c);
+    free(d->u);
+    *d = (ry_csr_deflation){0};
+}
+
+/* Groups the unknowns by aggregate, forms A Z and E = Z^T A Z and factors E (Cholesky).
+ * Returns 0 where E is not positive definite in floating point. */
+static int deflation_setup(const ry_csr *a, ry_csr_deflation *d) {
+    const size_t n = a->n, m = d->m, nz = a->row[n];
+    size_t *start = d->start, *cur = d->cur;
+    for (size_t k = 0; k <= m; ++k) start[k] = 0;
+    for (size_t i = 0; i < n; ++i) ++start[d->agg[i] + 1];
+    for (size_t k = 0; k < m; ++k) start[k + 1] += start[k];
+    for (size_t k = 0; k < m; ++k) cur[k] = start[k];
+    for (size_t i = 0; i < n; ++i) d->rows[cur[d->agg[i]]++] = (uint32_t)i;
+    const uint32_t *agg = d->agg;
+    uint32_t *azn = d->azn, *azc = d->azc;
+    double *azv = d->azv, *e = d->e;
+    /* row i of A Z: A's entries of the row summed by the aggregate of their column */
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (size_t i = 0; i < n; ++i) {
+        const size_t base = a->row[i];
+        uint32_t cnt = 0, t = 0; /* t: the last entry found (neighbours share aggregates) */
+        for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) {
+            const uint32_t l = agg[a->col[q]];
+            if (t >= cnt || azc[base + t] != l) {
+                t = 0;
+                while (t < cnt && azc[base + t] != l) ++t;
+                if (t == cnt) {
+                    azc[base + cnt] = l;
+                    azv[base + cnt++] = 0;
+                }
+            }
+            azv[base + t] += a->val[q];
+        }
+        azn[i] = cnt;
+    }
+    (void)nz;
+    /* row k of E: the rows of A Z of aggregate k's unknowns, in order; its first entry */
+    size_t *lo = cur;
+#pragma omp parallel for schedule(dynamic, 4) if (m > 64)
+    for (size_t k = 0; k < m; ++k) {
+        double *ek = e + k * m;
+        for (size_t l = 0; l <= k; ++l) ek[l] = 0;
+        size_t f = k;
+        for (size_t s = start[k]; s < start[k + 1]; ++s) {
+            const uint32_t i = d->rows[s];
+            for (uint32_t t = 0; t < azn[i]; ++t) {
+                const uint32_t l = azc[a->row[i] + t];
+                if (l > k) continue;
+                ek[l] += azv[a->row[i] + t];
+                if (l < f) f = l;
+            }
+        }
+        lo[k] = f;
+    }
+    /* E = L L^T, L in the lower triangle within E's envelope (row i from lo[i]; the
+     * factor fills no entry outside it), row by row from the rows before */
+    for (size_t i = 0; i < m; ++i) {
+        double *li = e + i * m;
+        for (size_t j = lo[i]; j < i; ++j) {
+            const double *lj = e + j * m;
+            double s = li[j];
+            for (size_t p = lo[i] > lo[j] ? lo[i] : lo[j]; p < j; ++p) s -= li[p] * lj[p];
+            li[j] = s / lj[j];
+        }
+        double s = li[i];
+        for (size_t p = lo[i]; p < i; ++p) s -= li[p] * li[p];
+        if (!(s > 0) || !isfinite(s)) return 0;
+        li[i] = sqrt(s);
+    }
+    return 1;
+}
+
+/* c = E^-1 Z^T v (the coarse solve). */
+static void coarse_solve(const ry_csr_deflation *d, const double *v) {
+    const size_t m = d->m;
+    double *c = d->c;
+    const double *e = d->e;
+#pragma omp parallel for schedule(static) if (m > 64)
+    for (size_t k = 0; k < m; ++k) {
+        double s = 0;
+        for (size_t q = d->start[k]; q < d->start[k + 1]; ++q) s += v[d->rows[q]];
+        c[k] = s;
+    }
+    const size_t *lo = d->cur;       /* the envelope (deflation_setup) */
+    for (size_t i = 0; i < m; ++i) { /* L y = c */
+        double s = c[i];
+        for (size_t p = lo[i]; p < i; ++p) s -= e[i * m + p] * c[p];
+        c[i] = s / e[i * m + i];
+    }
+    for (size_t i = m; i-- > 0;) { /* L^T c = y, by columns of L^T (rows of L) */
+        c[i] /= e[i * m + i];
+        for (size_t p = lo[i]; p < i; ++p) c[p] -= e[i * m + p] * c[i];
+    }
+}
+
+/* out = v - A Z c, the deflated v (P v) after coarse_solve(d, v). */
+static void deflate(const ry_csr *a, const ry_csr_deflation *d, const double *v, double *out) {
+    const size_t n = a->n;
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (size_t i = 0; i < n; ++i) {
+        double s = v[i];
+        const size_t base = a->row[i];
+        for (uint32_t t = 0; t < d->azn[i]; ++t) s -= d->azv[base + t] * d->c[d->azc[base + t]];
+        out[i] = s;
+    }
 }

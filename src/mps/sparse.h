@@ -1,5 +1,5 @@
 /* A symmetric sparse matrix in CSR form and the Jacobi-preconditioned conjugate-gradient
- * solver of the MPS scheme (pressure Poisson equation, implicit viscosity). */
+ * solver of the MPS scheme (pressure Poisson equation, implicit viscosity), with deflation. */
 #ifndef RYUSHI_MPS_SPARSE_H
 #define RYUSHI_MPS_SPARSE_H
 
@@ -72,5 +72,38 @@ ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_
 ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *const x[], double tol,
                            int max_iter, int iters[], double resid[], const ry_csr_dist *dist,
                            ry_error *err);
+
+/* Deflation of the conjugate gradients (Nicolaides 1987; the "DEF1" form of Tang, Nabben,
+ * Vuik & Erlangga 2009, J. Sci. Comput. 39: 340): the unknowns are grouped into m aggregates,
+ * Z holds their indicator vectors, and the coarse matrix E = Z^T A Z is factored once per
+ * solve. Each iteration removes from A p its part in the span of A Z (P = I - A Z E^-1 Z^T),
+ * so the m smoothest error components, which slow Jacobi-preconditioned CG on a large
+ * Poisson problem, are solved for exactly. The caller sets m and fills agg (aggregate of each
+ * unknown, 0 .. m - 1, every aggregate used) after ry_csr_deflation_reserve; the rest is
+ * internal. */
+typedef struct ry_csr_deflation {
+    size_t m;            /* aggregates (0: no deflation) */
+    uint32_t *agg;       /* aggregate of each unknown */
+    size_t *start, *cur; /* each aggregate's unknowns in rows (m + 1) */
+    uint32_t *rows;      /* unknowns grouped by aggregate (n) */
+    uint32_t *azn;       /* entries of row i of A Z, stored from A's row start (n) */
+    uint32_t *azc;       /* their aggregates (A's entries) */
+    double *azv;         /* their values */
+    double *e;           /* E, then its Cholesky factor (lower, m x m) */
+    double *c;           /* a coarse vector (m) */
+    double *u;           /* per system: b - A x~ and the deflated product (2 n each) */
+    size_t cap_n, cap_m, cap_u, cap_nz;
+} ry_csr_deflation;
+
+/* Makes room for n unknowns (agg) and m aggregates. */
+ry_status ry_csr_deflation_reserve(ry_csr_deflation *d, size_t n, size_t m, ry_error *err);
+void ry_csr_deflation_free(ry_csr_deflation *d);
+
+/* ry_csr_pcg_multi with deflation by d (one process; d->m == 0: none): the same stop,
+ * |b_k - A x_k| <= tol |b_k|, reached in fewer iterations. Where the coarse matrix is not
+ * positive definite in floating point it solves without deflation. */
+ry_status ry_csr_pcg_deflated(ry_csr *a, int m, const double *const b[], double *const x[],
+                              ry_csr_deflation *d, double tol, int max_iter, int iters[],
+                              double resid[], ry_error *err);
 
 #endif

@@ -11,6 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "ryushi/mps.h"
 #include "ryushi/validate.h"
@@ -65,6 +68,56 @@ static void test_hydrostatic_column(void **state) {
     assert_true(k2 <= 1.25 * k1 && vrms < 0.03);
     ry_sim_free(&sim);
     ry_table_free(&s);
+}
+
+/* Deflated conjugate gradients for the pressure (scheme.solver.deflation; docs/mps.md, "Linear
+ * solver"): the hydrostatic column (800 fluid particles) for 20 steps from rest with aggregates
+ * of 4 x 4 spacings and without. Both solves stop at the same relative residual (1e-8), so the
+ * pressures agree to about that after 20 steps of particle motion: within 1e-8 of the largest
+ * (measured 2.6e-11), in under half the iterations (measured 384 against 1,281: 0.30). The
+ * deflated run gives the same bits on 1 and 2 threads. */
+static void deflation_run(const char *sub, const char *defl, int threads, ry_sim *sim) {
+    const char *sets[] = {"time.end=0.02", "time.dt_max=0.001", "output.vtk=false", defl};
+    ry_table s;
+#ifdef _OPENMP
+    const int t0 = omp_get_max_threads();
+    omp_set_num_threads(threads);
+#else
+    (void)threads;
+#endif
+    run("cases/mps_hydrostatic.yaml", sub, 4, sets, &s, sim);
+#ifdef _OPENMP
+    omp_set_num_threads(t0);
+#endif
+    ry_table_free(&s);
+}
+
+static void test_deflation(void **state) {
+    (void)state;
+    ry_sim a, b, c;
+    deflation_run("defl_off", "scheme.solver.deflation=0", 2, &a);
+    deflation_run("defl_on", "scheme.solver.deflation=4", 2, &b);
+    deflation_run("defl_on1", "scheme.solver.deflation=4", 1, &c);
+    assert_int_equal(a.ps.n, b.ps.n);
+    const double *pa = a.ps.f[RY_F_P], *pb = b.ps.f[RY_F_P];
+    double dmax = 0, pmax = 0;
+    for (size_t i = 0; i < a.ps.n; ++i) {
+        dmax = fmax(dmax, fabs(pa[i] - pb[i]));
+        pmax = fmax(pmax, fabs(pa[i]));
+    }
+    const long ia = ry_mps_total_iterations(&a), ib = ry_mps_total_iterations(&b);
+    printf("deflation: pressure iterations %ld without, %ld with (%.2f); largest pressure "
+           "difference %.3g of %.1f Pa\n",
+           ia, ib, (double)ib / ia, dmax, pmax);
+    assert_true(pmax > 3000 && dmax <= 1e-8 * pmax);
+    assert_true(2 * ib < ia);
+    assert_int_equal(b.ps.n, c.ps.n);
+    const int fs[] = {RY_F_X, RY_F_Y, RY_F_VX, RY_F_VY, RY_F_P};
+    for (int k = 0; k < 5; ++k)
+        assert_memory_equal(b.ps.f[fs[k]], c.ps.f[fs[k]], b.ps.n * sizeof(double));
+    ry_sim_free(&a);
+    ry_sim_free(&b);
+    ry_sim_free(&c);
 }
 
 /* The hydrostatic column in a tank whose walls are one layer thick, with nothing behind them
@@ -477,6 +530,7 @@ int main(void) {
     if (only) cmocka_set_test_filter(only);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hydrostatic_column),
+        cmocka_unit_test(test_deflation),
         cmocka_unit_test(test_square_drop_potential),
         cmocka_unit_test(test_square_drop_csf),
         cmocka_unit_test(test_drop_rest_csf_2d),
