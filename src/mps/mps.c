@@ -34,7 +34,7 @@
 #include "sph/sph_pairs.h"
 
 enum { SRC_MIXED, SRC_NUMBER_DENSITY };
-enum { VISC_EXPLICIT, VISC_IMPLICIT, VISC_NONE };
+enum { VISC_EXPLICIT, VISC_IMPLICIT, VISC_NONE, VISC_MIXED };
 enum { GRAD_CORRECTED, GRAD_STANDARD };
 
 /* Roles in the pressure Poisson equation. */
@@ -117,7 +117,7 @@ static ry_status rheology_init(ry_sim *sim, mps *M, ry_error *err);
 static void rheology_explicit(ry_sim *sim, mps *M, double dt);
 
 static const char *const source_names[] = {"tanaka_masunaga", "number_density", NULL};
-static const char *const visc_names[] = {"explicit", "implicit", "none", NULL};
+static const char *const visc_names[] = {"explicit", "implicit", "none", "mixed", NULL};
 static const char *const grad_names[] = {"corrected", "standard", NULL};
 static const char *const surface_pressure_names[] = {"zero", "hydrostatic", NULL};
 static const char *const wall_velocity_names[] = {"own", "mirrored", "slip", NULL};
@@ -997,24 +997,36 @@ static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
     for (int k = 0; sim->par && k < nt; ++k) sim->par->sync(sim, ps->f[M->f_tau[k]], 1);
 }
 
+/* The viscous pair sums of fluid particle i: s = sum_j nu_ij w_ij (v_j - v_i) (times beta
+ * with mirrored walls) and the return value sum_j nu_ij w_ij; nu lap v = cl s. */
+static inline double viscous_sums(const ry_sim *sim, const mps *M, size_t i, double s[3]) {
+    const ry_particles *ps = &sim->ps;
+    const double re = M->re_l;
+    double c = 0;
+    s[0] = s[1] = s[2] = 0;
+    for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
+        const uint32_t j = M->pj[q];
+        const double w =
+            pair_nu(sim, M, i, j) * ry_mps_weight_tamai(M->pr[q], re) * wall_beta(sim, M, i, j);
+        c += w;
+        for (int d = 0; d < sim->dim; ++d)
+            s[d] += w * (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]);
+    }
+    return c;
+}
+
 /* a += nu lap v (explicit viscosity, eq. 7) for fluid particles; walls enter with their
  * velocity (no slip). */
 static void viscous_explicit(ry_sim *sim, const mps *M) {
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
-    const double re = M->re_l, cl = 2.0 * dim / (M->lambda * M->n0l);
+    const double cl = 2.0 * dim / (M->lambda * M->n0l);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
-        double s[3] = {0, 0, 0};
-        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
-            const uint32_t j = M->pj[q];
-            const double w = pair_nu(sim, M, i, j) * ry_mps_weight_tamai(M->pr[q], re);
-            for (int d = 0; d < dim; ++d)
-                s[d] +=
-                    w * wall_beta(sim, M, i, j) * (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]);
-        }
+        double s[3];
+        viscous_sums(sim, M, i, s);
         for (int d = 0; d < dim; ++d) ps->f[RY_F_AX + d][i] += cl * s[d];
     }
 }
@@ -1086,20 +1098,58 @@ static int couple_viscous(const ry_sim *sim, const mps *M, size_t i, size_t j, d
     return 1;
 }
 
-/* Implicit viscosity: (1 - dt nu lap) u* = v + dt a, per component, walls as known values. */
+/* `viscosity: mixed`: a fluid particle whose viscous diagonal dt sum_j c nu_ij w_ij (the
+ * matrix's diagonal less 1) is at most this takes the explicit step. Explicit diffusion keeps
+ * a maximum principle up to 1 (the new velocity a convex combination of the old ones). */
+#define MIXED_EXPLICIT_MAX 0.25
+
+/* `viscosity: mixed`: marks the fluid particles of the implicit solve (unk >= 0, numbered) and
+ * gives the others their explicit u* = v + dt (a + nu lap v) in f_vs; returns the unknowns. */
+static size_t viscous_split(ry_sim *sim, mps *M, double dt) {
+    ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const double cl = 2.0 * dim / (M->lambda * M->n0l);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        M->unk[i] = -1;
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double s[3];
+        if (dt * cl * viscous_sums(sim, M, i, s) > MIXED_EXPLICIT_MAX) {
+            M->unk[i] = 0; /* numbered below */
+            continue;
+        }
+        /* as viscous_explicit, then u* = v + dt a */
+        for (int d = 0; d < dim; ++d)
+            ps->f[M->f_vs[d]][i] = ps->f[RY_F_VX + d][i] + dt * (ps->f[RY_F_AX + d][i] + cl * s[d]);
+    }
+    size_t nunk = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (M->unk[i] == 0) M->unk[i] = (int32_t)nunk++;
+    return nunk;
+}
+
+/* Implicit viscosity: (1 - dt nu lap) u* = v + dt a, per component, walls as known values.
+ * With `viscosity: mixed` only the stiff particles are unknowns (viscous_split); the others'
+ * explicit u* enter their rows as known values, as the walls' velocities do. */
 static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
+    const int mixed = M->visc == VISC_MIXED;
     size_t nunk = 0;
-    for (size_t i = 0; i < n; ++i) M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
+    if (mixed)
+        nunk = viscous_split(sim, M, dt);
+    else
+        for (size_t i = 0; i < n; ++i)
+            M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
     RY_TRY(assemble(sim, M, nunk, couple_viscous, dt, 1.0, err));
     const double re = M->re_l, cl = 2.0 * dim / (M->lambda * M->n0l);
     /* the components' right-hand sides and solutions: b and xs from d nunk */
     const double *bs[3];
     double *xv[3];
     for (int d = 0; d < dim; ++d) {
-        const double *v = ps->f[RY_F_VX + d], *a = ps->f[RY_F_AX + d];
+        const double *v = ps->f[RY_F_VX + d], *a = ps->f[RY_F_AX + d], *us = ps->f[M->f_vs[d]];
         double *bd = M->b + (size_t)d * nunk, *xd = M->xs + (size_t)d * nunk;
         bs[d] = bd;
         xv[d] = xd;
@@ -1110,8 +1160,9 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
             for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
                 const uint32_t j = M->pj[q];
                 if (M->unk[j] >= 0) continue;
+                const double vj = mixed && ps->kind[j] == RY_KIND_FLUID ? us[j] : v[j];
                 rhs += cl * dt * pair_nu(sim, M, i, j) * ry_mps_weight_tamai(M->pr[q], re) *
-                       wall_beta(sim, M, i, j) * v[j];
+                       wall_beta(sim, M, i, j) * vj;
             }
             bd[M->unk[i]] = rhs;
             xd[M->unk[i]] = v[i];
@@ -1472,7 +1523,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     if (M->wall_mode == WALLV_MIRRORED) wall_distances(sim, M);
     if (M->rheo_gnf || M->rheo_ob) rheology_explicit(sim, M, dt);
     if (M->visc == VISC_EXPLICIT) viscous_explicit(sim, M);
-    if (M->visc == VISC_IMPLICIT) {
+    if (M->visc == VISC_IMPLICIT || M->visc == VISC_MIXED) {
         RY_TRY(viscous_implicit(sim, M, dt, err));
     } else {
         for (size_t i = 0; i < n; ++i)
