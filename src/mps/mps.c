@@ -1136,7 +1136,8 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    const int mixed = M->visc == VISC_MIXED;
+    /* (a distributed run solves them all: a halo copy lacks the neighbours for the split) */
+    const int mixed = M->visc == VISC_MIXED && !sim->par;
     size_t nunk = 0;
     if (mixed)
         nunk = viscous_split(sim, M, dt);
