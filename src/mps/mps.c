@@ -1328,14 +1328,12 @@ static ry_status aggregates(const ry_sim *sim, mps *M, size_t nunk, ry_error *er
         if (!isfinite(lo[d]) || !isfinite(hi[d])) return RY_OK;
     RY_TRY(ry_csr_deflation_reserve(&M->D, nunk, MAX_AGG, err));
     for (double side = (double)M->defl * sim->dx;; side *= 2) {
-        size_t nc[3] = {1, 1, 1}, cells = 1;
-        double span = 1;
-        for (int d = 0; d < dim; ++d) span *= floor((hi[d] - lo[d]) / side) + 1;
-        if (span > 64.0 * (double)nunk + 4096) continue; /* a grid far finer than the unknowns */
-        for (int d = 0; d < dim; ++d) {
-            nc[d] = (size_t)floor((hi[d] - lo[d]) / side) + 1;
-            cells *= nc[d];
-        }
+        double span[3] = {1, 1, 1};
+        for (int d = 0; d < dim; ++d) span[d] = floor((hi[d] - lo[d]) / side) + 1;
+        if (span[0] * span[1] * span[2] > 64.0 * (double)nunk + 4096)
+            continue; /* a grid far finer than the unknowns */
+        const size_t nc[3] = {(size_t)span[0], (size_t)span[1], (size_t)span[2]},
+                     cells = nc[0] * nc[1] * nc[2];
         if (cells > M->dmap_cap) {
             int32_t *p = realloc(M->dmap, cells * sizeof *p);
             RY_CHECK(err, p, RY_ERR_NOMEM, "out of memory (deflation grid: %zu cells)", cells);

@@ -115,6 +115,7 @@ typedef struct pcg_one {
 } pcg_one;
 
 /* Defined with the deflation below. */
+static ry_status deflation_room(const ry_csr *a, ry_csr_deflation *d, ry_error *err);
 static int deflation_setup(const ry_csr *a, ry_csr_deflation *d);
 static void coarse_solve(const ry_csr_deflation *d, const double *v);
 static void deflate(const ry_csr *a, const ry_csr_deflation *d, const double *v, double *out);
@@ -143,22 +144,7 @@ static ry_status pcg_core(ry_csr *a, int m, const double *const b[], double *con
     if (n == 0 && !dist) return RY_OK;
     if (d && (d->m == 0 || dist)) d = NULL;
     if (d) {
-        RY_CHECK(err, d->cap_n > n && d->cap_m > d->m && d->cap_u >= 2 * RY_CSR_MAX_RHS * (n + 1),
-                 RY_ERR_INTERNAL,
-                 "deflation: room for %zu unknowns and %zu aggregates, not %zu and %zu", d->cap_n,
-                 d->cap_m, n, d->m);
-        const size_t nz = a->row[n];
-        size_t cz = d->cap_nz, cz2 = d->cap_nz;
-        int ok = grow((void **)&d->azc, &cz, nz, sizeof *d->azc) &&
-                 grow((void **)&d->azv, &cz2, nz, sizeof *d->azv);
-        if (ok) {
-            double *e = realloc(d->e, d->m * d->m * sizeof *e);
-            ok = e != NULL;
-            if (e) d->e = e;
-        }
-        RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (deflation: %zu entries, %zu aggregates)",
-                 nz, d->m);
-        d->cap_nz = cz < cz2 ? cz : cz2;
+        RY_TRY(deflation_room(a, d, err));
         if (!deflation_setup(a, d)) d = NULL; /* E not positive definite in floating point */
         for (int k = 0; d && k < m; ++k) {
             s[k].u = d->u + 2 * (size_t)k * n;
@@ -321,7 +307,7 @@ ry_status ry_csr_deflation_reserve(ry_csr_deflation *d, size_t n, size_t m, ry_e
              grow((void **)&d->azn, &cn[2], n + 1, sizeof *d->azn) &&
              grow((void **)&d->u, &cu, 2 * RY_CSR_MAX_RHS * (n + 1), sizeof *d->u) &&
              grow((void **)&d->start, &cm[0], m + 1, sizeof *d->start) &&
-             grow((void **)&d->cur, &cm[1], m + 1, sizeof *d->cur) &&
+             grow((void **)&d->lo, &cm[1], m + 1, sizeof *d->lo) &&
              grow((void **)&d->c, &cm[2], m + 1, sizeof *d->c);
     RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (deflation: %zu unknowns, %zu aggregates)", n,
              m);
@@ -338,7 +324,7 @@ ry_status ry_csr_deflation_reserve(ry_csr_deflation *d, size_t n, size_t m, ry_e
 void ry_csr_deflation_free(ry_csr_deflation *d) {
     free(d->agg);
     free(d->start);
-    free(d->cur);
+    free(d->lo);
     free(d->rows);
     free(d->azn);
     free(d->azc);
@@ -349,16 +335,34 @@ void ry_csr_deflation_free(ry_csr_deflation *d) {
     *d = (ry_csr_deflation){0};
 }
 
+/* Room for A Z (at most A's entries) and E (m x m); the rest comes from
+ * ry_csr_deflation_reserve. */
+static ry_status deflation_room(const ry_csr *a, ry_csr_deflation *d, ry_error *err) {
+    const size_t n = a->n, nz = a->row[n];
+    RY_CHECK(err, d->cap_n > n && d->cap_m > d->m && d->cap_u >= 2 * RY_CSR_MAX_RHS * (n + 1),
+             RY_ERR_INTERNAL,
+             "deflation: room for %zu unknowns and %zu aggregates, not %zu and %zu", d->cap_n,
+             d->cap_m, n, d->m);
+    size_t cz = d->cap_nz, cz2 = d->cap_nz;
+    int ok = grow((void **)&d->azc, &cz, nz, sizeof *d->azc) &&
+             grow((void **)&d->azv, &cz2, nz, sizeof *d->azv) &&
+             grow((void **)&d->e, &d->cap_e, d->m * d->m, sizeof *d->e);
+    RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (deflation: %zu entries, %zu aggregates)", nz,
+             d->m);
+    d->cap_nz = cz < cz2 ? cz : cz2;
+    return RY_OK;
+}
+
 /* Groups the unknowns by aggregate, forms A Z and E = Z^T A Z and factors E (Cholesky).
  * Returns 0 where E is not positive definite in floating point. */
 static int deflation_setup(const ry_csr *a, ry_csr_deflation *d) {
-    const size_t n = a->n, m = d->m, nz = a->row[n];
-    size_t *start = d->start, *cur = d->cur;
+    const size_t n = a->n, m = d->m;
+    size_t *start = d->start, *lo = d->lo;
     for (size_t k = 0; k <= m; ++k) start[k] = 0;
     for (size_t i = 0; i < n; ++i) ++start[d->agg[i] + 1];
     for (size_t k = 0; k < m; ++k) start[k + 1] += start[k];
-    for (size_t k = 0; k < m; ++k) cur[k] = start[k];
-    for (size_t i = 0; i < n; ++i) d->rows[cur[d->agg[i]]++] = (uint32_t)i;
+    for (size_t k = 0; k < m; ++k) lo[k] = start[k]; /* (a cursor while grouping) */
+    for (size_t i = 0; i < n; ++i) d->rows[lo[d->agg[i]]++] = (uint32_t)i;
     const uint32_t *agg = d->agg;
     uint32_t *azn = d->azn, *azc = d->azc;
     double *azv = d->azv, *e = d->e;
@@ -381,9 +385,7 @@ static int deflation_setup(const ry_csr *a, ry_csr_deflation *d) {
         }
         azn[i] = cnt;
     }
-    (void)nz;
     /* row k of E: the rows of A Z of aggregate k's unknowns, in order; its first entry */
-    size_t *lo = cur;
 #pragma omp parallel for schedule(dynamic, 4) if (m > 64)
     for (size_t k = 0; k < m; ++k) {
         double *ek = e + k * m;
@@ -429,7 +431,7 @@ static void coarse_solve(const ry_csr_deflation *d, const double *v) {
         for (size_t q = d->start[k]; q < d->start[k + 1]; ++q) s += v[d->rows[q]];
         c[k] = s;
     }
-    const size_t *lo = d->cur;       /* the envelope (deflation_setup) */
+    const size_t *lo = d->lo;
     for (size_t i = 0; i < m; ++i) { /* L y = c */
         double s = c[i];
         for (size_t p = lo[i]; p < i; ++p) s -= e[i * m + p] * c[p];

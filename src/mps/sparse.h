@@ -82,17 +82,18 @@ ry_status ry_csr_pcg_multi(ry_csr *a, int m, const double *const b[], double *co
  * unknown, 0 .. m - 1, every aggregate used) after ry_csr_deflation_reserve; the rest is
  * internal. */
 typedef struct ry_csr_deflation {
-    size_t m;            /* aggregates (0: no deflation) */
-    uint32_t *agg;       /* aggregate of each unknown */
-    size_t *start, *cur; /* each aggregate's unknowns in rows (m + 1) */
-    uint32_t *rows;      /* unknowns grouped by aggregate (n) */
-    uint32_t *azn;       /* entries of row i of A Z, stored from A's row start (n) */
-    uint32_t *azc;       /* their aggregates (A's entries) */
-    double *azv;         /* their values */
-    double *e;           /* E, then its Cholesky factor (lower, m x m) */
-    double *c;           /* a coarse vector (m) */
-    double *u;           /* per system: b - A x~ and the deflated product (2 n each) */
-    size_t cap_n, cap_m, cap_u, cap_nz;
+    size_t m;       /* aggregates (0: no deflation) */
+    uint32_t *agg;  /* aggregate of each unknown */
+    size_t *start;  /* each aggregate's unknowns in rows (m + 1) */
+    size_t *lo;     /* the first column of each row of E within its envelope (m + 1) */
+    uint32_t *rows; /* unknowns grouped by aggregate (n) */
+    uint32_t *azn;  /* entries of row i of A Z, stored from A's row start (n) */
+    uint32_t *azc;  /* their aggregates (A's entries) */
+    double *azv;    /* their values */
+    double *e;      /* E, then its Cholesky factor (lower, m x m) */
+    double *c;      /* a coarse vector (m) */
+    double *u;      /* per system: b - A x~ and the deflated product (2 n each) */
+    size_t cap_n, cap_m, cap_u, cap_nz, cap_e;
 } ry_csr_deflation;
 
 /* Makes room for n unknowns (agg) and m aggregates. */
