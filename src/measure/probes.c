@@ -149,7 +149,9 @@ static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
  * [0] length: the tip less the attached body's lowest point (its lowest particle less half a
  * spacing), 0 when nothing hangs below the tip; [1] width: the largest horizontal extent of the
  * attached body below the tip plus one spacing (0 if none); [2] length / width (NAN if no width);
- * [3] detached: 1 when a body of at least 10 particles lies wholly below the tip, else 0. */
+ * [3] detached: 1 when a body of at least 10 particles lies wholly below the tip, else 0;
+ * [4] volume: the attached body's particles below the tip times the particle volume dx^dim
+ * (a droplet that leaves the tip sideways or upwards, a remnant still hanging, shows here). */
 static uint32_t uf_find(uint32_t *parent, uint32_t a) {
     while (parent[a] != a) {
         parent[a] = parent[parent[a]];
@@ -158,7 +160,7 @@ static uint32_t uf_find(uint32_t *parent, uint32_t a) {
     return a;
 }
 
-static ry_status droplet_measure(const ry_sim *sim, double out[4], ry_error *err) {
+static ry_status droplet_measure(const ry_sim *sim, double out[5], ry_error *err) {
     RY_CHECK(err, sim->droplet_material >= 0, RY_ERR_INPUT,
              "the droplet measurements need the case section 'droplet' (material, tip)");
     const ry_particles *ps = &sim->ps;
@@ -213,6 +215,7 @@ static ry_status droplet_measure(const ry_sim *sim, double out[4], ry_error *err
         }
     double low = INFINITY, lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     int detached = 0;
+    size_t below = 0;
     for (size_t i = 0; i < n; ++i) {
         if (!IN_DROP(i)) continue;
         const uint32_t r = uf_find(parent, (uint32_t)i);
@@ -221,6 +224,7 @@ static ry_status droplet_measure(const ry_sim *sim, double out[4], ry_error *err
             continue;
         }
         if (x[up][i] >= tip) continue;
+        ++below;
         low = fmin(low, x[up][i]);
         for (int d = 0; d < up; ++d) {
             lo[d] = fmin(lo[d], x[d][i]);
@@ -238,12 +242,13 @@ static ry_status droplet_measure(const ry_sim *sim, double out[4], ry_error *err
     out[1] = width;
     out[2] = width > 0 ? out[0] / width : NAN;
     out[3] = detached;
+    out[4] = (double)below * pow(sim->dx, sim->dim);
     return RY_OK;
 }
 
 /* One of droplet_measure's values. */
 static ry_status droplet_value(const ry_sim *sim, int k, double *v, ry_error *err) {
-    double o[4];
+    double o[5];
     RY_TRY(droplet_measure(sim, o, err));
     *v = o[k];
     return RY_OK;
@@ -259,6 +264,9 @@ static ry_status probe_droplet_aspect(const ry_sim *sim, double *v, ry_error *er
 }
 static ry_status probe_droplet_detached(const ry_sim *sim, double *v, ry_error *err) {
     return droplet_value(sim, 3, v, err);
+}
+static ry_status probe_droplet_volume(const ry_sim *sim, double *v, ry_error *err) {
+    return droplet_value(sim, 4, v, err);
 }
 
 static ry_status probe_inflow(const ry_sim *sim, double *v, ry_error *err) {
@@ -463,6 +471,11 @@ static const ry_probe p_droplet_detached = {
     "section droplet: 1 once a body of the material (10 particles or more) lies wholly below "
     "the tip, disconnected from the nozzle; else 0",
     probe_droplet_detached};
+static const ry_probe p_droplet_volume = {
+    "droplet_volume",
+    "section droplet: volume of the attached droplet below the tip (its particles times dx^dim) "
+    "[m^3, m^2 in 2D]",
+    probe_droplet_volume};
 
 static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_filled,
@@ -495,6 +508,7 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_droplet_width,
                                              &p_droplet_aspect,
                                              &p_droplet_detached,
+                                             &p_droplet_volume,
                                              NULL};
 
 const ry_probe *const *ry_probes(void) {

@@ -61,6 +61,8 @@ static void test_attached_and_detached(void **state) {
     assert_float_equal(eval(&sim, "droplet_width"), 8.0e-4, 1e-12);
     assert_float_equal(eval(&sim, "droplet_aspect"), 0.75, 1e-9);
     assert_true(eval(&sim, "droplet_detached") == 0);
+    /* 8 x 6 particles below the tip, 1e-8 m^2 each */
+    assert_float_equal(eval(&sim, "droplet_volume"), 48 * 1e-8, 1e-18);
     /* A void in the bore: the liquid above the tip moved up by three spacings. The droplet's
      * top (0.95 mm) still touches the tip, so it hangs from it, with the same size. */
     for (size_t i = 0; i < sim.ps.n; ++i)
@@ -70,6 +72,22 @@ static void test_attached_and_detached(void **state) {
     assert_float_equal(eval(&sim, "droplet_width"), 8.0e-4, 1e-12);
     for (size_t i = 0; i < sim.ps.n; ++i)
         if (sim.ps.material[i] == 1 && sim.ps.f[RY_F_Y][i] >= 1.0e-3) sim.ps.f[RY_F_Y][i] -= 3e-4;
+    /* The droplet rose beside the nozzle, a row of two particles still hanging under the tip
+     * (x 0.05 and 0.15 mm, y 0.95 mm): the attached body holds, its volume below the tip falls
+     * to those two. */
+    for (size_t i = 0; i < sim.ps.n; ++i) {
+        double *x = &sim.ps.f[RY_F_X][i], *y = &sim.ps.f[RY_F_Y][i];
+        if (sim.ps.material[i] != 1 || *y >= 1.0e-3) continue;
+        if (*y > 0.9e-3 && *x > 0 && *x < 0.2e-3) continue;
+        *y += 1.0e-3;
+        *x += *x < 0.2e-3 ? -0.6e-3 : 0.6e-3;
+    }
+    assert_true(eval(&sim, "droplet_detached") == 0);
+    assert_float_equal(eval(&sim, "droplet_volume"), 2 * 1e-8, 1e-18);
+    assert_float_equal(eval(&sim, "droplet_length"), 1.0e-4, 1e-12);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+    assert_int_equal(setup(&sim, &c, 1, &err), RY_OK);
     /* The droplet moved down by three spacings: it is cut off from the nozzle. */
     for (size_t i = 0; i < sim.ps.n; ++i)
         if (sim.ps.material[i] == 1 && sim.ps.f[RY_F_Y][i] < 1.0e-3) sim.ps.f[RY_F_Y][i] -= 3e-4;
