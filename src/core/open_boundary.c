@@ -75,6 +75,36 @@ static ry_status inlet_clear(const ry_sim *sim, ry_case *c, size_t q, const ry_o
     return RY_OK;
 }
 
+/* An inlet's velocity: `velocity` as given, or `flow_rate` Q [m^3/s, m^2/s in 2D] along the
+ * unit vector `direction`, through the zone's cross-section A across that axis: Q / A. */
+static ry_status inlet_velocity(ry_case *c, size_t q, int dim, ry_open_boundary *b, ry_error *err) {
+    char k[128], kv[128], where[256];
+    snprintf(k, sizeof k, "open_boundaries[%zu].flow_rate", q);
+    snprintf(kv, sizeof kv, "open_boundaries[%zu].velocity", q);
+    if (!ry_case_has(c, k)) return ry_case_vector(c, kv, NULL, dim, b->velocity, err);
+    if (ry_case_has(c, kv))
+        return ry_error_set(err, RY_ERR_INPUT,
+                            "%s: key '%s': an inlet takes 'velocity' or 'flow_rate' with "
+                            "'direction', not both",
+                            ry_case_where(c, k, where, sizeof where), k);
+    double rate, dir[3] = {0, 0, 0};
+    RY_TRY(ry_case_positive(c, k, NULL, &rate, err));
+    snprintf(k, sizeof k, "open_boundaries[%zu].direction", q);
+    RY_TRY(ry_case_vector(c, k, NULL, dim, dir, err));
+    int sign = 0;
+    const int axis = flow_axis(dir, dim, &sign);
+    if (axis < 0 || fabs(dir[axis]) != 1)
+        return ry_error_set(err, RY_ERR_INPUT,
+                            "%s: key '%s': the flow must be along one axis (a unit vector such "
+                            "as [0, 0, -1])",
+                            ry_case_where(c, k, where, sizeof where), k);
+    double area = 1;
+    for (int d = 0; d < dim; ++d)
+        if (d != axis) area *= b->hi[d] - b->lo[d];
+    b->velocity[axis] = sign * rate / area;
+    return RY_OK;
+}
+
 ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
     size_t n;
     RY_TRY(ry_case_count(c, "open_boundaries", &n, err));
@@ -107,8 +137,10 @@ ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
         if (st != RY_OK) break;
         double dir[3] = {0, 0, 0};
         if (b->type == RY_OPEN_INLET) {
-            snprintf(k, sizeof k, "open_boundaries[%zu].velocity", q);
-            if ((st = ry_case_vector(c, k, NULL, dim, b->velocity, err)) != RY_OK) break;
+            if ((st = inlet_velocity(c, q, dim, b, err)) != RY_OK) break;
+            snprintf(k, sizeof k, "open_boundaries[%zu].flow_rate", q);
+            const int by_rate = ry_case_has(c, k);
+            snprintf(k, sizeof k, "open_boundaries[%zu].%s", q, by_rate ? "direction" : "velocity");
             memcpy(dir, b->velocity, sizeof dir);
             int mat = 0;
             snprintf(k, sizeof k, "open_boundaries[%zu].material", q);

@@ -156,6 +156,41 @@ static void test_outlet_conversions(void **state) {
     ry_case_free(c);
 }
 
+/* The same channel's inlet given by its flow rate, 0.01 m^2/s through the zone's 0.1 m: the
+ * velocity 0.1 m/s of the case, along `direction`. */
+static void test_inlet_flow_rate(void **state) {
+    (void)state;
+    char cp[4096], od[512];
+    snprintf(cp, sizeof cp, "%s/cases/channel_inflow.yaml", root);
+    snprintf(od, sizeof od, "%s/flow_rate", tmpdir);
+    FILE *f = fopen(cp, "rb");
+    assert_non_null(f);
+    static char text[1 << 16], edited[1 << 17];
+    const size_t len = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[len] = 0;
+    const char *from = "velocity: [0.1, 0.0]        # [m/s]";
+    char *at = strstr(text, from);
+    assert_non_null(at);
+    *at = 0;
+    snprintf(edited, sizeof edited, "%sflow_rate: 0.01\n    direction: [1.0, 0.0]%s", text,
+             at + strlen(from));
+    ry_case *c = NULL;
+    ry_sim sim;
+    memset(&sim, 0, sizeof sim);
+    ry_error err = {0};
+    assert_int_equal(ry_case_load_string(&c, "flow_rate.yaml", edited, &err), RY_OK);
+    const ry_status st = ry_sim_setup(&sim, c, od, &err);
+    if (st != RY_OK) fail_msg("%s", err.msg);
+    assert_int_equal(sim.open[0].type, RY_OPEN_INLET);
+    assert_float_equal(sim.open[0].velocity[0], 0.1, 1e-15);
+    assert_true(sim.open[0].velocity[1] == 0);
+    assert_int_equal(sim.open[0].axis, 0);
+    assert_int_equal(sim.open[0].sign, 1);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 /* The neighbour list after in- and outflow (ry_sim_list_edit): the list of a search from the
  * reference positions, row for row, with the new particles' positions as theirs; no search. */
 static void assert_list_as_search(ry_sim *sim) {
@@ -218,6 +253,7 @@ int main(void) {
     if (!mkdtemp(tmpdir)) return 1;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_outlet_conversions),
+        cmocka_unit_test(test_inlet_flow_rate),
         cmocka_unit_test(test_list_after_inflow),
         cmocka_unit_test(test_channel_poiseuille),
     };
