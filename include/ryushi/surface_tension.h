@@ -50,6 +50,13 @@ typedef struct ry_surface_tension {
     /* Pairs of the neighbour list (by their place in sim->nl.j) that a thin wall separates
      * and that take no part (NULL: none); MPS sets it each step (docs/mps.md, "Thin walls"). */
     const uint8_t *cut;
+    /* Potential model, thin walls: each particle's unit normal of its thin wall's sheet (3 per
+     * particle, zero where it is not a thin wall or has no sheet), or NULL; MPS sets it each
+     * step. A thin wall particle then attracts as a wall of thin_layers layers would: images of
+     * it 1, ..., thin_layers - 1 spacings behind the sheet, away from the fluid particle, add
+     * their pair forces (ry_st_setup: 1, the wall as it stands; docs/mps.md, "Thin walls"). */
+    const double *thin_normal;
+    int thin_layers;
     /* Two liquids, potential model: pairs of different fluid materials with C cross_ratio,
      * cross_ratio = 1 - sigma_ab / (2 sigma) (1: the liquids mix). */
     double cross_ratio;

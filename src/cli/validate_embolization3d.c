@@ -20,9 +20,10 @@
 #include "ryushi/surface_tension.h"
 #include "ryushi/validate.h"
 
-/* The case's values (cases/mps_embolization_3d_coarse.yaml) and the seed's. */
-#define U_IN 8.5e-3         /* inflow [m/s] */
+/* The case's values (cases/mps_embolization_3d_coarse.yaml) and the seed's; the inflow
+ * velocity is read from the case's inlet. */
 #define BORE 4.0e-4         /* the square bore's side [m] */
+#define SEED_U 8.5e-3       /* the seed's mean inflow velocity [m/s] */
 #define OUTER 8.0e-4        /* the square tip's outer side [m] */
 #define SEED_BORE 4.0e-4    /* the seed's round catheter: inner diameter [m] */
 #define SEED_OUTER 6.0e-4   /*   outer diameter [m] */
@@ -179,7 +180,11 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
     }
     const size_t last = s.nrows - 1;
     const double t_end = ry_table_at(&s, last, ct), vin = ry_table_at(&s, last, ci);
-    const double q = U_IN * BORE * BORE, q_seed = U_IN * RY_PI * 0.25 * SEED_BORE * SEED_BORE;
+    double u_in = 0;
+    for (int b = 0; b < sim.nopen; ++b)
+        if (sim.open[b].type == RY_OPEN_INLET) u_in = fabs(sim.open[b].velocity[2]);
+    /* the case's flow rate through its square bore, and the seed's through its round one */
+    const double q = u_in * BORE * BORE, q_seed = SEED_U * RY_PI * 0.25 * SEED_BORE * SEED_BORE;
     double t_det = -1, v_det = NAN, vmax = 0, len_max = 0;
     for (size_t r = 0; r < s.nrows; ++r) {
         if (t_det < 0 && ry_table_at(&s, r, cd) > 0.5) {
@@ -221,14 +226,15 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
     if (t_det > 0)
         snprintf(line, sizeof line,
                  "detached at %.2f s: %+.1f %% against the experiment's %.2f s, %+.1f %% against "
-                 "the seed's simulation (%.1f s). Injected then: %.4g mm^3, which the seed's round "
-                 "bore (%.1f mm) delivers in %.2f s. Tate's law: %.4g mm^3 at this square tip "
-                 "(%.1f mm outside), reached at %.2f s; %.4g mm^3 at the seed's (%.1f mm), at "
-                 "%.2f s",
+                 "the seed's simulation (%.1f s). Injected then: %.4g mm^3 at %.4g mm^3/s, which "
+                 "the seed's flow (%.1f mm/s through its round bore of %.1f mm, %.4g mm^3/s) "
+                 "delivers in %.2f s. Tate's law: %.4g mm^3 at this square tip (%.1f mm "
+                 "outside), reached at %.2f s; %.4g mm^3 at the seed's (%.1f mm), at %.2f s of "
+                 "the seed's flow",
                  t_det, 100 * (t_det / T_EXPERIMENT - 1), T_EXPERIMENT,
-                 100 * (t_det / T_SEED_SIM - 1), T_SEED_SIM, 1e9 * v_det, 1e3 * SEED_BORE,
-                 v_det / q_seed, 1e9 * v_tate, 1e3 * OUTER, v_tate / q, 1e9 * v_tate_seed,
-                 1e3 * SEED_OUTER, v_tate_seed / q_seed);
+                 100 * (t_det / T_SEED_SIM - 1), T_SEED_SIM, 1e9 * v_det, 1e9 * q, 1e3 * SEED_U,
+                 1e3 * SEED_BORE, 1e9 * q_seed, v_det / q_seed, 1e9 * v_tate, 1e3 * OUTER,
+                 v_tate / q, 1e9 * v_tate_seed, 1e3 * SEED_OUTER, v_tate_seed / q_seed);
     else
         snprintf(line, sizeof line, "not detached by %.2f s", t_end);
     printf("  %s\n", line);

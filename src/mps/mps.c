@@ -362,6 +362,9 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     M->coll_r *= l0;
     RY_TRY(ry_case_bool(c, "scheme.wall_extrapolation", &yes, &M->wall_extrapolate, err));
     RY_TRY(ry_case_bool(c, "scheme.thin_wall_cut", &yes, &M->thin_cut_on, err));
+    const long three = 3;
+    long layers;
+    RY_TRY(ry_case_int(c, "scheme.thin_wall_layers", &three, 1, 3, &layers, err));
     RY_TRY(ry_case_double(c, "scheme.solver.tolerance", &tol, 1e-14, 1e-2, &M->tol, err));
     RY_TRY(
         ry_case_double(c, "scheme.solver.viscosity_tolerance", &vtol, 1e-14, 1e-2, &M->vtol, err));
@@ -371,6 +374,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     M->re_g *= l0;
     M->re_l *= l0;
     RY_TRY(ry_st_read(&M->st, c, sim->dim, l0, 3.1, 6.0, err));
+    M->st.thin_layers = (int)layers;
     M->csf_pressure = ry_st_pressure_form(&M->st);
     RY_TRY(contact_angle(sim, c, M, err));
     RY_TRY(body_thin(sim, c, M, err));
@@ -721,7 +725,10 @@ static ry_status wall_bodies(ry_sim *sim, mps *M, ry_error *err) {
         if (M->body_thin) M->thin[i] = b >= 0 && M->body_thin[b] ? b : -1;
     }
     if (M->body_group) M->st.wall_group = M->wgroup;
-    return M->body_thin ? thin_cut(sim, M, err) : RY_OK;
+    if (!M->body_thin) return RY_OK;
+    RY_TRY(thin_cut(sim, M, err));
+    M->st.thin_normal = M->tnrm; /* the potential model's images of thin walls */
+    return RY_OK;
 }
 
 /* The pairs within re_g and re_l (the fields pj, pr, gend, lend of mps) from the neighbour

@@ -86,6 +86,8 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     memset(st->wall_ratio, 0, sizeof st->wall_ratio);
     st->wall_group = NULL;
     st->cut = NULL;
+    st->thin_normal = NULL;
+    st->thin_layers = 1;
     st->cross_ratio = 1.0;
     st->contact_angle = NAN;
     st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
@@ -202,8 +204,30 @@ static double pair_coefficient(const ry_surface_tension *st, const ry_particles 
     return st->wall_ratio[st->wall_group ? st->wall_group[j] : 0][ps->material[i]];
 }
 
+/* Potential model: the images of thin wall particle j (dx = x_j - x_i, pair coefficient c)
+ * behind its sheet, on the side away from fluid particle i, add their forces to s; none where
+ * j has no sheet or i lies within a quarter spacing of its plane (beside the sheet's edge). */
+static void thin_images(const ry_surface_tension *st, int dim, uint32_t j, const double dx[3],
+                        double c, double *s) {
+    const double *nv = st->thin_normal + 3 * (size_t)j;
+    const double sn = nv[0] * dx[0] + nv[1] * dx[1] + nv[2] * dx[2], re2 = st->re * st->re;
+    if (fabs(sn) < 0.25 * st->l0) return;
+    const double step = sn > 0 ? st->l0 : -st->l0;
+    for (int m = 1; m < st->thin_layers; ++m) {
+        double e[3], r2 = 0;
+        for (int d = 0; d < 3; ++d) {
+            e[d] = dx[d] + m * step * nv[d];
+            r2 += e[d] * e[d];
+        }
+        if (r2 >= re2) return; /* the next image lies farther still */
+        const double r = sqrt(r2), f = c * ry_st_potential_f(r, st->l0, st->re);
+        for (int d = 0; d < dim; ++d) s[d] += f * e[d] / r;
+    }
+}
+
 /* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai
- * weight) or the potential force sum_j f(r) (x_j - x_i)/r; *count receives the neighbours. */
+ * weight) or the potential force sum_j f(r) (x_j - x_i)/r, with the images of thin walls
+ * (thin_images); *count receives the neighbours. */
 static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
                     double *count) {
     const ry_particles *ps = &sim->ps;
@@ -223,6 +247,8 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
         const double f = c * (csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re));
         *count += csf ? f : 1.0;
         for (int d = 0; d < dim; ++d) s[d] += f * dx[d] / r;
+        if (!csf && st->thin_normal && st->thin_layers > 1 && ps->kind[j] == RY_KIND_WALL)
+            thin_images(st, dim, j, dx, c, s);
     }
 }
 

@@ -50,6 +50,7 @@ case_ droplet_unknown_material 2 ":7: key 'droplet.material': no material named 
 case_ mps_outlet_pressure 2 ":8: key 'open_boundaries[0].pressure': scheme mps takes outlets at pressure 0 only (its outlets remove the fluid at the downstream face, a free surface)"
 case_ mps_surface_pressure_unknown 2 ":7: key 'scheme.surface_pressure': expected one of zero, hydrostatic; got 'extrapolated'"
 case_ mps_deflation_negative 2 ":7: key 'scheme.solver.deflation': expected an integer in [0, 1000], got '-2'"
+case_ mps_thin_wall_layers 2 ":5: key 'scheme.thin_wall_layers': expected an integer in [1, 3], got '4'"
 case_ inlet_flow_rate_and_velocity 2 ":8: key 'open_boundaries[0].flow_rate': an inlet takes 'velocity' or 'flow_rate' with 'direction', not both"
 case_ inlet_flow_rate_direction 2 ":8: key 'open_boundaries[0].direction': the flow must be along one axis (a unit vector such as [0, 0, -1])"
 case_ rheology_no_bound 2 ":6: key 'materials[0].rheology.viscosity_max': required key is missing"
