@@ -107,6 +107,21 @@ typedef struct ry_growth_fit {
 ry_growth_fit ry_fit_growth(const ry_table *series, const char *name, double t0, double amax,
                             double n_lo, double n_hi);
 
+/* A damped oscillation w(t) = a + e^(-k s) (b cos(2 pi s / T) + c sin(2 pi s / T)), s = t - t0,
+ * fitted to a column by least squares over the rows with t0 <= t <= t1 (rows holding NAN
+ * skipped). For each period T and decay rate k the best a, b, c are linear (the normal
+ * equations); T is searched over [T_lo, T_hi] and k over [0, k_max] on a grid of 200 x 41, then
+ * twice on grids ten times finer around the best. Fewer than 6 rows, or T_hi <= T_lo: no fit
+ * (period NAN). The rms is that of the residual; mean = a, amplitude = sqrt(b^2 + c^2). */
+typedef struct ry_oscillation_fit {
+    double period, decay;   /* T [s], k [1/s] */
+    double mean, amplitude; /* column units */
+    double rms;
+    int rows;
+} ry_oscillation_fit;
+ry_oscillation_fit ry_fit_oscillation(const ry_table *series, const char *name, double t0,
+                                      double t1, double T_lo, double T_hi, double k_max);
+
 /* Linear Rayleigh-Taylor growth rate [1/s] of a heavy layer (rho1, depth h1) over a light one
  * (rho2, depth h2, on a rigid floor), wavenumber k, gravity g, interfacial tension sigma, from
  * linear potential flow: n^2 (rho1 R + rho2 coth(k h2)) = (rho1 - rho2) g k - sigma k^3, with

@@ -398,6 +398,96 @@ ry_growth_fit ry_fit_growth(const ry_table *series, const char *name, double t0,
     return g;
 }
 
+/* Sum of squares of the best fit a + e^(-k s)(b cos w s + c sin w s) to (s, y), w = 2 pi / T;
+ * the coefficients in abc (INFINITY where the normal equations are singular). */
+static double oscillation_residual(const double *s, const double *y, int m, double T, double k,
+                                   double abc[3]) {
+    const double w = 2.0 * 3.14159265358979323846 / T;
+    double A[3][3] = {{0}}, r[3] = {0};
+    for (int i = 0; i < m; ++i) {
+        const double e = exp(-k * s[i]), f[3] = {1.0, e * cos(w * s[i]), e * sin(w * s[i])};
+        for (int a = 0; a < 3; ++a) {
+            r[a] += f[a] * y[i];
+            for (int b = 0; b < 3; ++b) A[a][b] += f[a] * f[b];
+        }
+    }
+    /* Cramer's rule on the 3 x 3 system */
+    const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                       A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                       A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    if (!(fabs(det) > 1e-300)) return INFINITY;
+    for (int c = 0; c < 3; ++c) {
+        double M[3][3];
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) M[a][b] = b == c ? r[a] : A[a][b];
+        abc[c] = (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                  M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                  M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])) /
+                 det;
+    }
+    double ss = 0;
+    for (int i = 0; i < m; ++i) {
+        const double e = exp(-k * s[i]);
+        const double d = abc[0] + e * (abc[1] * cos(w * s[i]) + abc[2] * sin(w * s[i])) - y[i];
+        ss += d * d;
+    }
+    return ss;
+}
+
+ry_oscillation_fit ry_fit_oscillation(const ry_table *series, const char *name, double t0,
+                                      double t1, double T_lo, double T_hi, double k_max) {
+    ry_oscillation_fit o = {NAN, NAN, NAN, NAN, NAN, 0};
+    const int c = ry_table_col(series, name), ct = ry_table_col(series, "t");
+    if (c < 0 || ct < 0 || !(T_hi > T_lo && T_lo > 0) || !(k_max >= 0)) return o;
+    double *s = malloc((series->nrows + 1) * sizeof *s),
+           *y = malloc((series->nrows + 1) * sizeof *y);
+    int m = 0;
+    for (size_t r = 0; s && y && r < series->nrows; ++r) {
+        const double tr = series->data[r * series->ncols + ct];
+        const double yr = series->data[r * series->ncols + c];
+        if (tr < t0 || tr > t1 || !isfinite(yr)) continue;
+        s[m] = tr - t0;
+        y[m++] = yr;
+    }
+    if (m >= 6) {
+        double bestT = NAN, bestk = 0, best = INFINITY, abc[3];
+        double Tlo = T_lo, Thi = T_hi, klo = 0, khi = k_max;
+        for (int level = 0; level < 3; ++level) {
+            const int nT = level ? 41 : 200, nk = 41;
+            for (int i = 0; i < nT; ++i)
+                for (int j = 0; j < nk; ++j) {
+                    const double T = Tlo + (Thi - Tlo) * i / (nT - 1),
+                                 k = klo + (khi - klo) * j / (nk - 1);
+                    if (!(T > 0) || k < 0) continue;
+                    const double f = oscillation_residual(s, y, m, T, k, abc);
+                    if (f < best) {
+                        best = f;
+                        bestT = T;
+                        bestk = k;
+                    }
+                }
+            /* the next grid: two steps of this one either side of the best */
+            const double dT = 2.0 * (Thi - Tlo) / (nT - 1), dk = 2.0 * (khi - klo) / (nk - 1);
+            Tlo = bestT - dT;
+            Thi = bestT + dT;
+            klo = fmax(bestk - dk, 0.0);
+            khi = bestk + dk;
+        }
+        if (isfinite(best)) {
+            oscillation_residual(s, y, m, bestT, bestk, abc);
+            o.period = bestT;
+            o.decay = bestk;
+            o.mean = abc[0];
+            o.amplitude = hypot(abc[1], abc[2]);
+            o.rms = sqrt(best / m);
+            o.rows = m;
+        }
+    }
+    free(s);
+    free(y);
+    return o;
+}
+
 double ry_rt_growth_rate(double rho1, double rho2, double h1, double h2, double g, double k,
                          double nu, double sigma, int free_top) {
     const double drive = (rho1 - rho2) * g * k - sigma * k * k * k, t1 = tanh(k * h1);

@@ -212,8 +212,11 @@ static void test_thin_wall_cut(void **state) {
  * as the seed does (half period at the first maximum of the width, period at the next minimum).
  * Tolerances (measured in brackets): potential model, both within 15 % (+9 %, +9 %); CSF
  * (pressure form, the default), both within 10 % (-3.3 %, -6.3 %; the force form gave +3 % and
- * +18 %). */
-static void square_drop(const char *model, double tol_half, double tol_period) {
+ * +18 %). The period of a damped cosine fitted to the width (ry_fit_oscillation) is printed;
+ * CSF's within 10 % (-6.6 %, the same at pressure tolerances from 1e-9 to 1e-7). The potential
+ * model's drop answers to the rounding: its fitted period reads from 5.1 to 6.7 ms at those
+ * tolerances (docs/validation.md), so it is not asserted. */
+static void square_drop(const char *model, double tol_half, double tol_period, double tol_fit) {
     char mset[64], sub[64];
     snprintf(mset, sizeof mset, "surface_tension.model=%s", model);
     snprintf(sub, sizeof sub, "square_%s", model);
@@ -224,12 +227,14 @@ static void square_drop(const char *model, double tol_half, double tol_period) {
     const double R = 3e-3 / sqrt(3.14159265358979323846);
     const double T = 2 * 3.14159265358979323846 / sqrt(60 * 0.0728 / (1000 * R * R * R));
     ry_drop_periods d = ry_drop_periods_measure(&s, "width_x");
+    const ry_oscillation_fit f = ry_fit_oscillation(&s, "width_x", 0, 1, 0.3 * T, 2 * T, 1e3);
     printf("square drop 30x30, %s: half period %.3f ms (Lamb %.3f), period %.3f ms (Lamb %.3f); "
-           "widths %.3f, %.3f, %.3f mm\n",
+           "widths %.3f, %.3f, %.3f mm; damped cosine fitted: period %.3f ms (%+.1f %%)\n",
            model, 1e3 * d.half, 0.5e3 * T, 1e3 * d.period, 1e3 * T, 1e3 * d.width0,
-           1e3 * d.width_max, 1e3 * d.width_min);
+           1e3 * d.width_max, 1e3 * d.width_min, 1e3 * f.period, 100 * (f.period / T - 1));
     assert_true(fabs(d.half / (0.5 * T) - 1) <= tol_half);
     assert_true(fabs(d.period / T - 1) <= tol_period);
+    if (tol_fit > 0) assert_true(fabs(f.period / T - 1) <= tol_fit);
     /* The drop bulges past the circle's diameter 2R and comes back below it. */
     assert_true(d.width_max > 2 * R && d.width_min < 2 * R);
     ry_table_free(&s);
@@ -237,12 +242,12 @@ static void square_drop(const char *model, double tol_half, double tol_period) {
 
 static void test_square_drop_potential(void **state) {
     (void)state;
-    square_drop("potential", 0.15, 0.15);
+    square_drop("potential", 0.15, 0.15, 0);
 }
 
 static void test_square_drop_csf(void **state) {
     (void)state;
-    square_drop("csf", 0.10, 0.10);
+    square_drop("csf", 0.10, 0.10, 0.10);
 }
 
 /* Drops at rest with CSF in its default (pressure) form: the mean pressure inside (r < R/2)
