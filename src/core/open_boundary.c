@@ -137,10 +137,10 @@ ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
         if (st != RY_OK) break;
         double dir[3] = {0, 0, 0};
         if (b->type == RY_OPEN_INLET) {
+            /* a velocity from flow_rate lies along its checked direction: only a given
+             * velocity can fail the one-axis test below */
             if ((st = inlet_velocity(c, q, dim, b, err)) != RY_OK) break;
-            snprintf(k, sizeof k, "open_boundaries[%zu].flow_rate", q);
-            const int by_rate = ry_case_has(c, k);
-            snprintf(k, sizeof k, "open_boundaries[%zu].%s", q, by_rate ? "direction" : "velocity");
+            snprintf(k, sizeof k, "open_boundaries[%zu].velocity", q);
             memcpy(dir, b->velocity, sizeof dir);
             int mat = 0;
             snprintf(k, sizeof k, "open_boundaries[%zu].material", q);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "ryushi/atomic_file.h"
+#include "mps/small.h"
 #include "ryushi/validate.h"
 
 ry_status ry_setup_case_file(const char *path, int nset, const char *const *sets,
@@ -411,20 +412,7 @@ static double oscillation_residual(const double *s, const double *y, int m, doub
             for (int b = 0; b < 3; ++b) A[a][b] += f[a] * f[b];
         }
     }
-    /* Cramer's rule on the 3 x 3 system */
-    const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
-                       A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                       A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-    if (!(fabs(det) > 1e-300)) return INFINITY;
-    for (int c = 0; c < 3; ++c) {
-        double M[3][3];
-        for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b) M[a][b] = b == c ? r[a] : A[a][b];
-        abc[c] = (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
-                  M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
-                  M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])) /
-                 det;
-    }
+    if (!ry_solve_small(3, A, r, abc)) return INFINITY; /* A is symmetric */
     double ss = 0;
     for (int i = 0; i < m; ++i) {
         const double e = exp(-k * s[i]);
