@@ -57,6 +57,13 @@ typedef struct ry_surface_tension {
      * their pair forces (ry_st_setup: 1, the wall as it stands; docs/mps.md, "Thin walls"). */
     const double *thin_normal;
     int thin_layers;
+    /* The scheme's own pairs at the current positions, where it keeps them (NULL: the models
+     * read the neighbour list): particle i's pairs are pair_j[q], at distance pair_r[q], for q
+     * from sim->nl.offset[i] to pair_end[i]; they hold every pair within re but the cut ones.
+     * MPS sets them after each pair build and takes them back when the particles move. */
+    const uint32_t *pair_j;
+    const double *pair_r;
+    const size_t *pair_end;
     /* Two liquids, potential model: pairs of different fluid materials with C cross_ratio,
      * cross_ratio = 1 - sigma_ab / (2 sigma) (1: the liquids mix). */
     double cross_ratio;

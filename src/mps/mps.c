@@ -606,10 +606,11 @@ static int thin_between(ry_sim *sim, const mps *M, size_t a, size_t b, const uin
         const double *nv = M->tnrm + 3 * k;
         double da[3], db[3];
         sep(sim, k, a, da);
+        const double sa = nv[0] * da[0] + nv[1] * da[1] + nv[2] * da[2];
+        if (fabs(sa) < off) continue;
         sep(sim, k, b, db);
-        const double sa = nv[0] * da[0] + nv[1] * da[1] + nv[2] * da[2],
-                     sb = nv[0] * db[0] + nv[1] * db[1] + nv[2] * db[2];
-        if (!(sa * sb < 0) || fabs(sa) < off || fabs(sb) < off) continue;
+        const double sb = nv[0] * db[0] + nv[1] * db[1] + nv[2] * db[2];
+        if (!(sa * sb < 0) || fabs(sb) < off) continue;
         const double t = sa / (sa - sb);
         double c2 = 0;
         for (int d = 0; d < 3; ++d) {
@@ -621,7 +622,7 @@ static int thin_between(ry_sim *sim, const mps *M, size_t a, size_t b, const uin
     return 0;
 }
 
-static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
+static ry_status thin_cut(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n, nq = sim->nl.offset[n];
     thin_normals(sim, M);
@@ -686,6 +687,7 @@ static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
 #pragma omp parallel for reduction(+ : nc) schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         const size_t q0 = sim->nl.offset[i], q1 = sim->nl.offset[i + 1];
+        if (fluid_rows && ps->kind[i] != RY_KIND_FLUID) continue; /* rows not read (x^n) */
         if (!act[i]) {
             memset(M->cut + q0, 0, q1 - q0);
             continue;
@@ -694,14 +696,17 @@ static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
             const uint32_t j = sim->nl.j[q];
             const size_t a = i < j ? i : j, b = i < j ? j : i;
             uint8_t cut = 0;
-            if (ps->kind[a] != RY_KIND_WALL || ps->kind[b] != RY_KIND_WALL)
+            double dx[3];
+            /* (the pairs of the list's skin take part in nothing) */
+            const int near = M->tn_off[a + 1] > M->tn_off[a] || M->tn_off[b + 1] > M->tn_off[b];
+            if (near && (ps->kind[a] != RY_KIND_WALL || ps->kind[b] != RY_KIND_WALL) &&
+                sep(sim, i, j, dx) < rm2)
                 cut = (uint8_t)(thin_between(sim, M, a, b, M->tn_j + M->tn_off[a],
                                              M->tn_off[a + 1] - M->tn_off[a]) ||
                                 thin_between(sim, M, a, b, M->tn_j + M->tn_off[b],
                                              M->tn_off[b + 1] - M->tn_off[b]));
             M->cut[q] = cut;
-            double dx[3];
-            nc += cut && sep(sim, i, j, dx) < rm2;
+            nc += cut;
         }
     }
     M->st.cut = M->cut;
@@ -711,7 +716,7 @@ static ry_status thin_cut(ry_sim *sim, mps *M, ry_error *err) {
 
 /* Each wall particle's body, every step (ids survive reordering): its wetting group
  * (bodies[k].contact_angle) and whether it is thin, with the pairs thin walls cut. */
-static ry_status wall_bodies(ry_sim *sim, mps *M, ry_error *err) {
+static ry_status wall_bodies(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
     if (!M->body_group && !M->body_thin) return RY_OK;
     const ry_particles *ps = &sim->ps;
     /* the particles keep their places between searches and edits of the set (a serial run) */
@@ -726,7 +731,7 @@ static ry_status wall_bodies(ry_sim *sim, mps *M, ry_error *err) {
     }
     if (M->body_group) M->st.wall_group = M->wgroup;
     if (!M->body_thin) return RY_OK;
-    RY_TRY(thin_cut(sim, M, err));
+    RY_TRY(thin_cut(sim, M, fluid_rows, err));
     M->st.thin_normal = M->tnrm; /* the potential model's images of thin walls */
     return RY_OK;
 }
@@ -737,7 +742,7 @@ static ry_status wall_bodies(ry_sim *sim, mps *M, ry_error *err) {
  * order of the list. Each row's squared distances go to a buffer of the thread, and the
  * split into the inner and the outer pairs stores every entry and advances by a comparison
  * (the branches it replaces fail unpredictably). */
-static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
+static ry_status pairs_build(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
     const size_t n = sim->ps.n, nq = sim->nl.offset[n];
     if (M->pq_cap < nq) {
         const size_t c = nq + nq / 4 + 16;
@@ -772,6 +777,10 @@ static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
         for (size_t i = 0; i < n; ++i) {
             if (!ok) continue;
             const size_t lo = sim->nl.offset[i], nb = sim->nl.offset[i + 1] - lo;
+            if (fluid_rows && sim->ps.kind[i] != RY_KIND_FLUID) {
+                M->gend[i] = M->lend[i] = lo;
+                continue;
+            }
             const uint32_t *nj = sim->nl.j + lo;
             if (periodic) {
                 double dx[3];
@@ -808,6 +817,11 @@ static ry_status pairs_build(ry_sim *sim, mps *M, ry_error *err) {
         free(orr);
     }
     RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (MPS pairs)");
+    /* the surface tension reads them where they reach its radius (until the particles move) */
+    const int st_own = M->st.re <= ro && !sim->par;
+    M->st.pair_j = st_own ? M->pj : NULL;
+    M->st.pair_r = st_own ? M->pr : NULL;
+    M->st.pair_end = st_own ? (g_inner ? M->lend : M->gend) : NULL;
     return RY_OK;
 }
 
@@ -1517,8 +1531,11 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     /* Explicit part at x^n: gravity, surface tension, viscosity. */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
-    RY_TRY(wall_bodies(sim, M, err));
-    RY_TRY(pairs_build(sim, M, err));
+    /* the terms at x^n read the rows of the fluid particles alone (and, for the mirrored wall
+     * velocity, the walls' distances to the fluid) */
+    const int fluid_rows = M->wall_mode != WALLV_MIRRORED;
+    RY_TRY(wall_bodies(sim, M, fluid_rows, err));
+    RY_TRY(pairs_build(sim, M, fluid_rows, err));
     size_t n = ps->n;
     double *a[3];
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
@@ -1544,11 +1561,12 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     /* Pressure at x* (the list may be rebuilt and the particles reordered). */
     RY_TRY(ry_sim_neighbors(sim, M->re_max, err));
     RY_TRY(scratch(M, ps->n, err));
-    RY_TRY(wall_bodies(sim, M, err));
-    RY_TRY(pairs_build(sim, M, err));
+    RY_TRY(wall_bodies(sim, M, 0, err));
+    RY_TRY(pairs_build(sim, M, 0, err));
     number_density(sim, M);
     RY_TRY(pressure(sim, M, dt, err));
     correct(sim, M, dt);
+    M->st.pair_j = NULL;           /* the pairs are of x*, the particles now elsewhere */
     if (sim->par && M->coll_r > 0) /* the collisions read the corrected neighbours */
         for (int d = 0; d < dim; ++d) {
             sim->par->sync(sim, ps->f[RY_F_X + d], 1);

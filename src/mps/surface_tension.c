@@ -88,6 +88,9 @@ ry_status ry_st_setup(ry_surface_tension *st, int model, int dim, double l0, dou
     st->cut = NULL;
     st->thin_normal = NULL;
     st->thin_layers = 1;
+    st->pair_j = NULL;
+    st->pair_r = NULL;
+    st->pair_end = NULL;
     st->cross_ratio = 1.0;
     st->contact_angle = NAN;
     st->delta_sum = csf_delta_sum(dim, l0, re, &st->g_top);
@@ -231,25 +234,42 @@ static void thin_images(const ry_surface_tension *st, int dim, uint32_t j, const
 static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
                     double *count) {
     const ry_particles *ps = &sim->ps;
-    const int dim = sim->dim, csf = st->model == RY_ST_CSF;
+    const int csf = st->model == RY_ST_CSF;
+    const int images = !csf && st->thin_normal && st->thin_layers > 1;
     const double re = st->re, re2 = re * re;
-    s[0] = s[1] = s[2] = 0;
-    *count = 0;
-    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-        if (st->cut && st->cut[q]) continue;
-        const uint32_t j = sim->nl.j[q];
-        double dx[3];
-        const double r2 = pair_sep(sim, i, j, dx);
-        if (r2 >= re2 || r2 <= 0) continue; /* (a third of the list lies beyond re) */
+    /* the scheme's pairs (their distances known, the cut ones and most beyond re left out),
+     * or the neighbour list */
+    const int own = st->pair_j != NULL;
+    const uint32_t *js = own ? st->pair_j : sim->nl.j;
+    const size_t q0 = sim->nl.offset[i], q1 = own ? st->pair_end[i] : sim->nl.offset[i + 1];
+    double s0 = 0, s1 = 0, s2 = 0, cnt = 0, im[3] = {0, 0, 0};
+    for (size_t q = q0; q < q1; ++q) {
+        if (!own && st->cut && st->cut[q]) continue;
+        const uint32_t j = js[q];
+        double dx[3], r;
+        if (own) {
+            r = st->pair_r[q];
+            if (r >= re || r <= 0) continue;
+            pair_sep(sim, i, j, dx);
+        } else {
+            const double r2 = pair_sep(sim, i, j, dx);
+            if (r2 >= re2 || r2 <= 0) continue; /* (a third of the list lies beyond re) */
+            r = sqrt(r2);
+        }
         const double c = pair_coefficient(st, ps, i, j, csf);
         if (c == 0.0) continue;
-        const double r = sqrt(r2);
         const double f = c * (csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re));
-        *count += csf ? f : 1.0;
-        for (int d = 0; d < dim; ++d) s[d] += f * dx[d] / r;
-        if (!csf && st->thin_normal && st->thin_layers > 1 && ps->kind[j] == RY_KIND_WALL)
-            thin_images(st, dim, j, dx, c, s);
+        const double g = f / r;
+        cnt += csf ? f : 1.0;
+        s0 += g * dx[0]; /* dx is zero beyond the dimension */
+        s1 += g * dx[1];
+        s2 += g * dx[2];
+        if (images && ps->kind[j] == RY_KIND_WALL) thin_images(st, sim->dim, j, dx, c, im);
     }
+    s[0] = s0 + im[0];
+    s[1] = s1 + im[1];
+    s[2] = s2 + im[2];
+    *count = cnt;
 }
 
 /* Wetting (CSF): the wall normal n_w at fluid particle i, -sum_walls w x_ij / r normalised
