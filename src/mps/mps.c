@@ -64,6 +64,7 @@ typedef struct mps {
     double *tpw;         /*   its pressure for the gradient seen from either side (2 n) */
     uint32_t *tn_off;    /* thin wall particles near each particle: offsets (n + 1) */
     uint32_t *tn_j;      /*   and their indices */
+    double *tn_d;        /*   and for each, x_i - x_k and its part along k's normal (4) */
     size_t tn_cap;
     uint8_t *cut;     /* pairs of the neighbour list that a thin wall separates (by place) */
     uint8_t *cut_row; /* with it: the rows that may hold a cut pair (n) */
@@ -106,6 +107,7 @@ typedef struct mps {
     uint32_t *pj;
     double *pr;          /* distance */
     size_t *gend, *lend; /* (per particle: allocated by scratch) */
+    double *nu_pair;     /* the pair viscosity of two materials (nmat x nmat; pair_nu) */
     size_t pq_cap;
     ry_particle_unknowns pu; /* distributed run: the unknowns of the solve under way */
     size_t cap;
@@ -431,6 +433,7 @@ static void mps_free(void *state) {
     free(M->pr);
     free(M->gend);
     free(M->lend);
+    free(M->nu_pair);
     free(M->body_group);
     free(M->wgroup);
     free(M->body_thin);
@@ -439,6 +442,7 @@ static void mps_free(void *state) {
     free(M->tpw);
     free(M->tn_off);
     free(M->tn_j);
+    free(M->tn_d);
     free(M->cut_row);
     free(M->cut);
     ry_colour_free(&M->colour);
@@ -596,21 +600,26 @@ static void thin_normals(ry_sim *sim, mps *M) {
     }
 }
 
-/* Does a thin wall particle of the list ks[0..nk-1] separate particles a and b? */
-static int thin_between(ry_sim *sim, const mps *M, size_t a, size_t b, const uint32_t *ks,
-                        size_t nk) {
+/* Does a thin wall particle k near one end of the pair separate particles a and b? The list
+ * ks[0..nk-1] holds the thin particles near the end `own` (a, or b where own_b), with
+ * own_d[4 m] = x_own - x_k and its part along k's normal; the other end's are computed. */
+static int thin_between(ry_sim *sim, const mps *M, size_t a, size_t b, int own_b,
+                        const uint32_t *ks, const double *own_d, size_t nk) {
     const double l0 = sim->dx, off = 0.25 * l0, reach2 = 0.5625 * l0 * l0;
+    const size_t far = own_b ? a : b;
     for (size_t m = 0; m < nk; ++m) {
         const uint32_t k = ks[m];
         if (k == a || k == b) continue;
+        const double *od = own_d + 4 * m;
+        if (fabs(od[3]) < off) continue;
         const double *nv = M->tnrm + 3 * k;
-        double da[3], db[3];
-        sep(sim, k, a, da);
-        const double sa = nv[0] * da[0] + nv[1] * da[1] + nv[2] * da[2];
-        if (fabs(sa) < off) continue;
-        sep(sim, k, b, db);
-        const double sb = nv[0] * db[0] + nv[1] * db[1] + nv[2] * db[2];
-        if (!(sa * sb < 0) || fabs(sb) < off) continue;
+        double fd[3];
+        sep(sim, k, far, fd);
+        const double fs = nv[0] * fd[0] + nv[1] * fd[1] + nv[2] * fd[2];
+        if (fabs(fs) < off) continue;
+        const double *da = own_b ? fd : od, *db = own_b ? od : fd;
+        const double sa = own_b ? fs : od[3], sb = own_b ? od[3] : fs;
+        if (!(sa * sb < 0)) continue;
         const double t = sa / (sa - sb);
         double c2 = 0;
         for (int d = 0; d < 3; ++d) {
@@ -645,11 +654,13 @@ static ry_status thin_cut(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
         }
     }
     for (size_t i = 0; i < n; ++i) M->tn_off[i + 1] += M->tn_off[i];
-    if (M->tn_cap < M->tn_off[n] || !M->tn_j) {
+    if (M->tn_cap < M->tn_off[n] || !M->tn_j || !M->tn_d) {
         const size_t c = M->tn_off[n] + M->tn_off[n] / 4 + 16;
         uint32_t *t = realloc(M->tn_j, c * sizeof *t);
-        RY_CHECK(err, t != NULL, RY_ERR_NOMEM, "out of memory (thin walls)");
-        M->tn_j = t;
+        if (t) M->tn_j = t;
+        double *td = realloc(M->tn_d, 4 * c * sizeof *td);
+        if (td) M->tn_d = td;
+        RY_CHECK(err, t && td, RY_ERR_NOMEM, "out of memory (thin walls)");
         M->tn_cap = c;
     }
     if (M->cut_cap < nq || !M->cut) {
@@ -672,6 +683,16 @@ static ry_status thin_cut(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
     }
     memmove(M->tn_off, M->tn_off + 1, n * sizeof *M->tn_off);
     M->tn_off[n] = total;
+    /* each particle's separation from its thin neighbours, and the part along their normals */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i)
+        for (uint32_t m = M->tn_off[i]; m < M->tn_off[i + 1]; ++m) {
+            const uint32_t k = M->tn_j[m];
+            const double *nv = M->tnrm + 3 * k;
+            double *td = M->tn_d + 4 * (size_t)m;
+            sep(sim, k, i, td);
+            td[3] = nv[0] * td[0] + nv[1] * td[1] + nv[2] * td[2];
+        }
     /* the rows with a pair that may be cut: a particle with a thin one near, and its
      * neighbours */
     uint8_t *act = M->cut_row;
@@ -701,9 +722,11 @@ static ry_status thin_cut(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
             const int near = M->tn_off[a + 1] > M->tn_off[a] || M->tn_off[b + 1] > M->tn_off[b];
             if (near && (ps->kind[a] != RY_KIND_WALL || ps->kind[b] != RY_KIND_WALL) &&
                 sep(sim, i, j, dx) < rm2)
-                cut = (uint8_t)(thin_between(sim, M, a, b, M->tn_j + M->tn_off[a],
+                cut = (uint8_t)(thin_between(sim, M, a, b, 0, M->tn_j + M->tn_off[a],
+                                             M->tn_d + 4 * (size_t)M->tn_off[a],
                                              M->tn_off[a + 1] - M->tn_off[a]) ||
-                                thin_between(sim, M, a, b, M->tn_j + M->tn_off[b],
+                                thin_between(sim, M, a, b, 1, M->tn_j + M->tn_off[b],
+                                             M->tn_d + 4 * (size_t)M->tn_off[b],
                                              M->tn_off[b + 1] - M->tn_off[b]));
             M->cut[q] = cut;
             nc += cut;
@@ -859,16 +882,14 @@ static void number_density(ry_sim *sim, mps *M) {
 /* Kinematic viscosity of a pair (harmonic mean: symmetric, and 0 next to an inviscid fluid).
  * With a shear-rate dependent viscosity each particle has its own value (field f_nu, set by
  * rheology_explicit), and a wall takes the fluid particle's. */
-static inline double pair_nu(const ry_sim *sim, const mps *M, size_t i, size_t j) {
-    double a, b;
-    if (M->rheo_gnf) {
-        a = sim->ps.f[M->f_nu][i];
-        b = sim->ps.kind[j] == RY_KIND_FLUID ? sim->ps.f[M->f_nu][j] : a;
-    } else {
-        a = sim->mat[sim->ps.material[i]].viscosity;
-        b = sim->mat[sim->ps.material[j]].viscosity;
-    }
+static inline double nu_mean(double a, double b) {
     return a + b > 0 ? 2.0 * a * b / (a + b) : 0.0;
+}
+static inline double pair_nu(const ry_sim *sim, const mps *M, size_t i, size_t j) {
+    if (!M->rheo_gnf) /* the materials' pairs, computed once (rheology_init) */
+        return M->nu_pair[(size_t)sim->ps.material[i] * (size_t)sim->nmat + sim->ps.material[j]];
+    const double a = sim->ps.f[M->f_nu][i];
+    return nu_mean(a, sim->ps.kind[j] == RY_KIND_FLUID ? sim->ps.f[M->f_nu][j] : a);
 }
 
 /* With `wall_velocity: mirrored` a wall particle j enters the viscous terms of fluid particle i
@@ -902,6 +923,12 @@ static void wall_distances(ry_sim *sim, mps *M) {
 static ry_status rheology_init(ry_sim *sim, mps *M, ry_error *err) {
     M->f_nu = M->f_gd = -1;
     for (int k = 0; k < 6; ++k) M->f_tau[k] = -1;
+    const size_t nm = (size_t)sim->nmat;
+    M->nu_pair = malloc((nm ? nm * nm : 1) * sizeof *M->nu_pair);
+    RY_CHECK(err, M->nu_pair != NULL, RY_ERR_NOMEM, "out of memory");
+    for (size_t a = 0; a < nm; ++a)
+        for (size_t b = 0; b < nm; ++b)
+            M->nu_pair[a * nm + b] = nu_mean(sim->mat[a].viscosity, sim->mat[b].viscosity);
     for (int m = 0; m < sim->nmat; ++m) {
         M->rheo_gnf |= ry_rheology_generalised(&sim->mat[m].rheo);
         M->rheo_ob |= ry_rheology_viscoelastic(&sim->mat[m].rheo);
@@ -1023,16 +1050,23 @@ static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
 static inline double viscous_sums(const ry_sim *sim, const mps *M, size_t i, double s[3]) {
     const ry_particles *ps = &sim->ps;
     const double re = M->re_l;
-    double c = 0;
-    s[0] = s[1] = s[2] = 0;
+    const int dim = sim->dim;
+    const double *v[3];
+    double c = 0, t[3] = {0, 0, 0}, vi[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) {
+        v[d] = ps->f[RY_F_VX + d];
+        vi[d] = v[d][i];
+    }
     for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
         const uint32_t j = M->pj[q];
         const double w =
             pair_nu(sim, M, i, j) * ry_mps_weight_tamai(M->pr[q], re) * wall_beta(sim, M, i, j);
         c += w;
-        for (int d = 0; d < sim->dim; ++d)
-            s[d] += w * (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]);
+        for (int d = 0; d < dim; ++d) t[d] += w * (v[d][j] - vi[d]);
     }
+    s[0] = t[0];
+    s[1] = t[1];
+    s[2] = t[2];
     return c;
 }
 
@@ -1052,14 +1086,31 @@ static void viscous_explicit(ry_sim *sim, const mps *M) {
     }
 }
 
+/* Pressure: pairs between unknowns and free-surface particles (Dirichlet); dummies are left
+ * out. */
+static int couple_pressure(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
+                           double dt) {
+    (void)sim;
+    (void)i;
+    (void)dt;
+    *coef = 1.0;
+    return M->role[j] != ROLE_DUMMY;
+}
+
+/* Viscosity: every pair; walls are known velocities. */
+static int couple_viscous(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
+                          double dt) {
+    *coef = dt * pair_nu(sim, M, i, j) * wall_beta(sim, M, i, j);
+    return 1;
+}
+
 /* Assembles the rows of the unknowns (unk[i] >= 0) from the Laplacian pairs: for each pair
- * (i, j) within re_l that `couples` accepts, coefficient c w_ij on the diagonal and -c w_ij
- * off it when j is an unknown too (pairs beyond re_l make no entry); diag_extra is added to
- * every diagonal. coef(i, j) scales
- * c w_ij (1 for the pressure, dt nu_ij for the viscosity). */
-typedef int (*couple_fn)(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
-                         double dt);
-static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, double dt,
+ * (i, j) within re_l that couple_pressure or, where `viscous`, couple_viscous accepts,
+ * coefficient c w_ij on the diagonal and -c w_ij off it when j is an unknown too (pairs beyond
+ * re_l make no entry); diag_extra is added to every diagonal. coef(i, j) scales c w_ij (1 for
+ * the pressure, dt nu_ij for the viscosity). (A flag rather than a function pointer: the
+ * coefficient inlines into the loop.) */
+static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double dt,
                           double diag_extra, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
@@ -1087,7 +1138,9 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, d
         for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
             const uint32_t j = M->pj[q];
             double coef = 0, a = 0;
-            if (couples(sim, M, i, j, &coef, dt)) a = cl * coef * ry_mps_weight_tamai(M->pr[q], re);
+            if (viscous ? couple_viscous(sim, M, i, j, &coef, dt)
+                        : couple_pressure(sim, M, i, j, &coef, dt))
+                a = cl * coef * ry_mps_weight_tamai(M->pr[q], re);
             diag += a;
             if (M->unk[j] >= 0) {
                 A->col[p] = (uint32_t)M->unk[j];
@@ -1099,24 +1152,6 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, couple_fn couples, d
         A->diag[k] = diag;
     }
     return RY_OK;
-}
-
-/* Pressure: pairs between unknowns and free-surface particles (Dirichlet); dummies are left
- * out. */
-static int couple_pressure(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
-                           double dt) {
-    (void)sim;
-    (void)i;
-    (void)dt;
-    *coef = 1.0;
-    return M->role[j] != ROLE_DUMMY;
-}
-
-/* Viscosity: every pair; walls are known velocities. */
-static int couple_viscous(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
-                          double dt) {
-    *coef = dt * pair_nu(sim, M, i, j) * wall_beta(sim, M, i, j);
-    return 1;
 }
 
 /* `viscosity: mixed`: a fluid particle whose viscous diagonal dt sum_j c nu_ij w_ij (the
@@ -1165,7 +1200,7 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
     else
         for (size_t i = 0; i < n; ++i)
             M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
-    RY_TRY(assemble(sim, M, nunk, couple_viscous, dt, 1.0, err));
+    RY_TRY(assemble(sim, M, nunk, 1, dt, 1.0, err));
     const double re = M->re_l, cl = 2.0 * dim / (M->lambda * M->n0l);
     /* the components' right-hand sides and solutions: b and xs from d nunk */
     const double *bs[3];
@@ -1210,20 +1245,24 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
 static double divergence(const ry_sim *sim, const mps *M, size_t i) {
     const ry_particles *ps = &sim->ps;
     const double re = M->re_g;
+    const int dim = sim->dim;
+    /* u* of the fluid, the velocity of the rest */
+    const double *us[3], *uv[3];
+    double ui[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) {
+        us[d] = ps->f[M->f_vs[d]];
+        uv[d] = ps->f[RY_F_VX + d];
+        ui[d] = ps->kind[i] == RY_KIND_FLUID ? us[d][i] : uv[d][i];
+    }
     double s = 0;
     for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
         const uint32_t j = M->pj[q];
         double dx[3];
         const double r2 = sep(sim, i, j, dx);
         if (r2 <= 0) continue;
+        const double *const *u = ps->kind[j] == RY_KIND_FLUID ? us : uv;
         double du = 0;
-        for (int d = 0; d < sim->dim; ++d) {
-            const double ui =
-                ps->kind[i] == RY_KIND_FLUID ? ps->f[M->f_vs[d]][i] : ps->f[RY_F_VX + d][i];
-            const double uj =
-                ps->kind[j] == RY_KIND_FLUID ? ps->f[M->f_vs[d]][j] : ps->f[RY_F_VX + d][j];
-            du += (uj - ui) * dx[d];
-        }
+        for (int d = 0; d < dim; ++d) du += (u[d][j] - ui[d]) * dx[d];
         s += du / r2 * ry_mps_weight_tamai(M->pr[q], re);
     }
     return sim->dim * s / M->n0g;
@@ -1401,7 +1440,7 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
                  "MPS: no free-surface particle, so the pressure equation has no reference value "
                  "(a closed or periodic domain): set scheme.compressibility (e.g. 1e-9 1/Pa)");
     }
-    RY_TRY(assemble(sim, M, nunk, couple_pressure, dt, M->alpha * rho_max / (dt * dt), err));
+    RY_TRY(assemble(sim, M, nunk, 0, dt, M->alpha * rho_max / (dt * dt), err));
     const double *nd = ps->f[M->f_nd];
     const double g = M->gamma;
     /* Dirichlet values: 0, or the Laplace jump sigma kappa with CSF in pressure form; plus,

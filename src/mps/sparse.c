@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include <omp.h>
+
 #include "mps/sparse.h"
 #include "ryushi/sim.h"
 
@@ -332,6 +334,7 @@ void ry_csr_deflation_free(ry_csr_deflation *d) {
     free(d->e);
     free(d->c);
     free(d->u);
+    free(d->slot);
     *d = (ry_csr_deflation){0};
 }
 
@@ -344,9 +347,13 @@ static ry_status deflation_room(const ry_csr *a, ry_csr_deflation *d, ry_error *
              "deflation: room for %zu unknowns and %zu aggregates, not %zu and %zu", d->cap_n,
              d->cap_m, n, d->m);
     size_t cz = d->cap_nz, cz2 = d->cap_nz;
+    const size_t ns = (size_t)omp_get_max_threads() * d->m, cs = d->cap_slot;
     int ok = grow((void **)&d->azc, &cz, nz, sizeof *d->azc) &&
              grow((void **)&d->azv, &cz2, nz, sizeof *d->azv) &&
-             grow((void **)&d->e, &d->cap_e, d->m * d->m, sizeof *d->e);
+             grow((void **)&d->e, &d->cap_e, d->m * d->m, sizeof *d->e) &&
+             grow((void **)&d->slot, &d->cap_slot, ns, sizeof *d->slot);
+    /* (no aggregate has a place in a row yet) */
+    for (size_t k = ok && d->cap_slot > cs ? 0 : cs; ok && k < d->cap_slot; ++k) d->slot[k] = -1;
     RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (deflation: %zu entries, %zu aggregates)", nz,
              d->m);
     d->cap_nz = cz < cz2 ? cz : cz2;
@@ -366,24 +373,28 @@ static int deflation_setup(const ry_csr *a, ry_csr_deflation *d) {
     const uint32_t *agg = d->agg;
     uint32_t *azn = d->azn, *azc = d->azc;
     double *azv = d->azv, *e = d->e;
-    /* row i of A Z: A's entries of the row summed by the aggregate of their column */
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (size_t i = 0; i < n; ++i) {
-        const size_t base = a->row[i];
-        uint32_t cnt = 0, t = 0; /* t: the last entry found (neighbours share aggregates) */
-        for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) {
-            const uint32_t l = agg[a->col[q]];
-            if (t >= cnt || azc[base + t] != l) {
-                t = 0;
-                while (t < cnt && azc[base + t] != l) ++t;
-                if (t == cnt) {
+    /* row i of A Z: A's entries of the row summed by the aggregate of their column, in the
+     * order the aggregates first appear; the thread's slot table gives an aggregate's place
+     * in the row (-1: none yet) and is cleared after it */
+#pragma omp parallel if (n > 4096)
+    {
+        int32_t *slot = d->slot + (size_t)omp_get_thread_num() * m;
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; ++i) {
+            const size_t base = a->row[i];
+            uint32_t cnt = 0;
+            for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) {
+                const uint32_t l = agg[a->col[q]];
+                if (slot[l] < 0) {
+                    slot[l] = (int32_t)cnt;
                     azc[base + cnt] = l;
                     azv[base + cnt++] = 0;
                 }
+                azv[base + (uint32_t)slot[l]] += a->val[q];
             }
-            azv[base + t] += a->val[q];
+            for (uint32_t t = 0; t < cnt; ++t) slot[azc[base + t]] = -1;
+            azn[i] = cnt;
         }
-        azn[i] = cnt;
     }
     /* row k of E: the rows of A Z of aggregate k's unknowns, in order; its first entry */
 #pragma omp parallel for schedule(dynamic, 4) if (m > 64)

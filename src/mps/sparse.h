@@ -93,7 +93,8 @@ typedef struct ry_csr_deflation {
     double *e;      /* E, then its Cholesky factor (lower, m x m) */
     double *c;      /* a coarse vector (m) */
     double *u;      /* per system: b - A x~ and the deflated product (2 n each) */
-    size_t cap_n, cap_m, cap_u, cap_nz, cap_e;
+    int32_t *slot;  /* per thread, each aggregate's place in the row of A Z being formed (m) */
+    size_t cap_n, cap_m, cap_u, cap_nz, cap_e, cap_slot;
 } ry_csr_deflation;
 
 /* Makes room for n unknowns (agg) and m aggregates. */

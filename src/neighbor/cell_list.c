@@ -352,6 +352,39 @@ static void radix_u32(uint32_t *a, size_t m, uint32_t *tmp, int passes) {
     if (src != a) memcpy(a, src, m * sizeof *a);
 }
 
+/* The cells around particle i's own (no periodic sides) that come within r2max of it, in
+ * ascending order: a corner cell of the 27 lies beyond the radius for about half the
+ * particles, an edge cell for a fifth. The distance to a cell is taken to its nominal box,
+ * which holds its particles up to the rounding of the binning (and the outer cells' clamped
+ * ones farther out); the margin of 1e-9 r2max covers the rounding. */
+static inline int near_cells(const ry_cell_list *cl, int dim, const double *const x[3],
+                             double r2max, size_t i, size_t out[27]) {
+    const size_t c0 = cl->cell_of[i], nx = (size_t)cl->ncell[0], ny = (size_t)cl->ncell[1];
+    const size_t k[3] = {c0 % nx, (c0 / nx) % ny, c0 / (nx * ny)};
+    double e2[3][3] = {{0}}; /* squared distance to the cell at offset -1, 0, +1 per axis */
+    int from[3], to[3];
+    for (int d = 0; d < 3; ++d) {
+        from[d] = k[d] > 0 ? -1 : 0;
+        to[d] = k[d] + 1 < (size_t)cl->ncell[d] ? 1 : 0;
+        if (d >= dim) continue;
+        const double b0 = cl->lo[d] + (double)k[d] * cl->cell[d];
+        const double el = x[d][i] - b0, eh = b0 + cl->cell[d] - x[d][i];
+        e2[d][0] = el > 0 ? el * el : 0.0;
+        e2[d][2] = eh > 0 ? eh * eh : 0.0;
+    }
+    const double thr = r2max * (1.0 + 1e-9);
+    int n = 0;
+    for (int c = from[2]; c <= to[2]; ++c)
+        for (int b = from[1]; b <= to[1]; ++b)
+            for (int a = from[0]; a <= to[0]; ++a) {
+                if (e2[0][a + 1] + e2[1][b + 1] + e2[2][c + 1] > thr) continue;
+                const size_t z = (size_t)((long)k[2] + c), y = (size_t)((long)k[1] + b),
+                             w = (size_t)((long)k[0] + a);
+                out[n++] = (z * ny + y) * nx + w;
+            }
+    return n;
+}
+
 /* Neighbours of particle i, written to out, which must have room for one entry more than
  * their number (the stores are unconditional, to avoid mispredicted branches), and sorted;
  * tmp has room for as many (a long row out of order is radix-sorted through it, in passes
@@ -360,7 +393,8 @@ static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int 
                                const double *const x[3], double r2max, size_t i, uint32_t *out,
                                uint32_t *tmp, int passes) {
     size_t cells[27];
-    int nc = ry_cells_neighbours(cl, g->periodic, cl->cell_of[i], cells);
+    int nc = per ? ry_cells_neighbours(cl, g->periodic, cl->cell_of[i], cells)
+                 : near_cells(cl, dim, x, r2max, i, cells);
     size_t cnt = 0;
     const size_t *start = cl->start;
     const uint32_t *order = cl->order;
