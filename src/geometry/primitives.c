@@ -13,6 +13,13 @@ static long lattice_count(double a, double b, double dx) {
     return q < 1e9 ? (long)q : 1000000000L; /* far beyond any particle limit */
 }
 
+/* ceil(q) lattice spacings (0 for q <= 0 or NaN), held below 1e9 as lattice_count is: a
+ * body far too large for its spacing reaches fill_lattice's check instead of overflowing. */
+static long lattice_span(double q) {
+    if (!(q > 0)) return 0;
+    return q < 1e9 ? (long)ceil(q) : 1000000000L;
+}
+
 typedef int (*inside_fn)(const double *p, const void *ctx);
 
 /* Appends the lattice points of [lo, lo + n dx] for which inside() holds. */
@@ -106,7 +113,7 @@ ry_status ry_fill_sphere(ry_particles *ps, const double *centre, double radius, 
     double lo[3] = {0, 0, 0};
     long n[3] = {1, 1, 1};
     /* A lattice centred on the sphere's centre (points symmetric about it). */
-    long m = (long)ceil(radius / dx) + 1;
+    long m = lattice_span(radius / dx) + 1;
     for (int d = 0; d < ps->dim; ++d) {
         s.c[d] = centre[d];
         lo[d] = centre[d] - m * dx;
@@ -152,7 +159,7 @@ ry_status ry_fill_cylinder(ry_particles *ps, const double *base, const double *a
         hi[d] = fmax(e0, e1) + radius;
     }
     long n[3];
-    for (int d = 0; d < 3; ++d) n[d] = (long)ceil((hi[d] - lo[d]) / dx);
+    for (int d = 0; d < 3; ++d) n[d] = lattice_span((hi[d] - lo[d]) / dx);
     return fill_lattice(ps, lo, n, dx, inside_cylinder, &c, st, added, err);
 }
 
