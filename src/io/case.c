@@ -706,14 +706,15 @@ static ry_status build_tree(const char *name, const char *origin, const char *te
                             node **out, ry_error *err) {
     *out = NULL;
     /* Directives (%YAML, %TAG) have no use in a case, and libfyaml 0.7 can loop forever on a
-     * malformed one (found by fuzzing): refused before parsing. */
+     * malformed one (found by fuzzing): refused before parsing. A line ends at LF, CR LF or a
+     * lone CR, as YAML has it (a '%' after a lone CR also hung the parser). */
     for (size_t i = 0, line = 1; i < len; ++i) {
-        if (text[i] == '%' && (i == 0 || text[i - 1] == '\n')) {
+        if (text[i] == '%' && (i == 0 || text[i - 1] == '\n' || text[i - 1] == '\r')) {
             builder b = {.name = name, .origin = origin, .err = err};
             return build_error(&b, origin ? 0 : (int)line,
                                "YAML directives (lines starting with '%%') are not supported");
         }
-        if (text[i] == '\n') ++line;
+        if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == len || text[i + 1] != '\n'))) ++line;
     }
     diag_sink sink;
     sink.last[0] = '\0';
