@@ -352,8 +352,8 @@ static ry_status deflation_room(const ry_csr *a, ry_csr_deflation *d, ry_error *
              grow((void **)&d->azv, &cz2, nz, sizeof *d->azv) &&
              grow((void **)&d->e, &d->cap_e, d->m * d->m, sizeof *d->e) &&
              grow((void **)&d->slot, &d->cap_slot, ns, sizeof *d->slot);
-    /* (no aggregate has a place in a row yet) */
-    for (size_t k = ok && d->cap_slot > cs ? 0 : cs; ok && k < d->cap_slot; ++k) d->slot[k] = -1;
+    /* (the new entries: no aggregate has a place in a row yet; the old ones hold -1) */
+    for (size_t k = cs; ok && k < d->cap_slot; ++k) d->slot[k] = -1;
     RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (deflation: %zu entries, %zu aggregates)", nz,
              d->m);
     d->cap_nz = cz < cz2 ? cz : cz2;
