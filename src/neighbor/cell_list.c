@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "neighbor/neighbor_internal.h"
+#include "neighbor/r2_simd.h"
 
 /* Upper bound on the number of cells: beyond it the cells are enlarged (still correct, only
  * slower). Keeps memory O(n) for sparse sets (far-apart clusters, a few stray particles). */
@@ -385,6 +386,36 @@ static inline int near_cells(const ry_cell_list *cl, int dim, const double *cons
     return n;
 }
 
+/* The particles js[0..m-1] of one cell within the radius of particle i (3D, no periodic
+ * sides), appended to out from cnt; returns the new count. With AVX-512 eight at a time (the
+ * same entries in the same order as the scalar loop). */
+#ifdef RY_R2_SIMD
+#define RY_SIMD_3D 1
+static inline size_t cell_run_simd(const double *const x[3], size_t i, double r2max,
+                                   const uint32_t *js, size_t m, uint32_t *out, size_t cnt) {
+    const __m512d xi[3] = {_mm512_set1_pd(x[0][i]), _mm512_set1_pd(x[1][i]),
+                           _mm512_set1_pd(x[2][i])};
+    const __m512d vr = _mm512_set1_pd(r2max);
+    const __m256i self = _mm256_set1_epi32((int)i);
+    for (size_t k = 0; k < m; k += 8) {
+        const __mmask8 lanes = ry_simd_lanes(m - k);
+        const __m256i idx = _mm256_maskz_loadu_epi32(lanes, js + k);
+        const __mmask8 keep =
+            _mm512_mask_cmp_pd_mask(lanes, ry_simd_r2(x, xi, idx, lanes), vr, _CMP_LT_OQ) &
+            _mm256_cmpneq_epi32_mask(idx, self);
+        cnt += ry_simd_append(keep, idx, _mm512_setzero_pd(), out + cnt, NULL);
+    }
+    return cnt;
+}
+#else
+#define RY_SIMD_3D 0
+static inline size_t cell_run_simd(const double *const x[3], size_t i, double r2max,
+                                   const uint32_t *js, size_t m, uint32_t *out, size_t cnt) {
+    (void)x, (void)i, (void)r2max, (void)js, (void)m, (void)out;
+    return cnt;
+}
+#endif
+
 /* Neighbours of particle i, written to out, which must have room for one entry more than
  * their number (the stores are unconditional, to avoid mispredicted branches), and sorted;
  * tmp has room for as many (a long row out of order is radix-sorted through it, in passes
@@ -406,6 +437,8 @@ static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int 
                 out[cnt] = j;
                 cnt += (ry_nb_r2(g, dim, x, i, j) < r2max) & (j != i);
             }
+        else if (RY_SIMD_3D && dim == 3)
+            cnt = cell_run_simd(x, i, r2max, order + start[c], end - start[c], out, cnt);
         else
             for (size_t p = start[c]; p < end; ++p) {
                 const uint32_t j = order[p];
