@@ -764,6 +764,46 @@ static ry_status wall_bodies(ry_sim *sim, mps *M, int fluid_rows, ry_error *err)
     return RY_OK;
 }
 
+#ifdef RY_R2_SIMD
+/* pairs_build's row i (3D, no periodic sides) eight entries at a time: the squared distances
+ * of the list's entries nj[0..nb-1] (to rb) and the lanes within the inner and the outer
+ * radius that are not cut (to mk), then the pairs, the inner ones first, with their
+ * distances; *a and *no are the counts. The same pairs in the same order, and the same bits
+ * (the square root is exact to the rounding on either path), as the scalar loop. */
+static inline void simd_pairs_row(const double *const x[3], size_t i, const uint32_t *nj,
+                                  const uint8_t *cut, size_t nb, double ri2, double ro2, double *rb,
+                                  uint8_t *mk, uint32_t *pj, double *pr, size_t *a, size_t *no) {
+    const __m512d xi[3] = {_mm512_set1_pd(x[0][i]), _mm512_set1_pd(x[1][i]),
+                           _mm512_set1_pd(x[2][i])};
+    const __m512d vi = _mm512_set1_pd(ri2), vo = _mm512_set1_pd(ro2);
+    const __m128i z8 = _mm_setzero_si128();
+    size_t ni = 0;
+    for (size_t k = 0, c = 0; k < nb; k += 8, c += 2) {
+        const __mmask8 m = ry_simd_lanes(nb - k);
+        const __m512d v = ry_simd_r2(x, xi, _mm256_maskz_loadu_epi32(m, nj + k), m);
+        __mmask8 keep = m;
+        if (cut)
+            keep &= (__mmask8)_mm_cmpeq_epi8_mask(_mm_maskz_loadu_epi8((__mmask16)m, cut + k), z8);
+        mk[c] = keep & _mm512_cmp_pd_mask(v, vi, _CMP_LT_OQ);
+        mk[c + 1] =
+            keep & _mm512_cmp_pd_mask(v, vi, _CMP_GE_OQ) & _mm512_cmp_pd_mask(v, vo, _CMP_LT_OQ);
+        _mm512_mask_storeu_pd(rb + k, m, v);
+        ni += (size_t)__builtin_popcount(mk[c]);
+    }
+    size_t qi = 0, qo = ni;
+    for (size_t k = 0, c = 0; k < nb; k += 8, c += 2) {
+        const __mmask8 in = mk[c], out = mk[c + 1], m = in | out;
+        if (!m) continue;
+        const __m256i idx = _mm256_maskz_loadu_epi32(m, nj + k);
+        const __m512d r = _mm512_sqrt_pd(_mm512_maskz_loadu_pd(m, rb + k));
+        qi += ry_simd_append(in, idx, r, pj + qi, pr + qi);
+        qo += ry_simd_append(out, idx, r, pj + qo, pr + qo);
+    }
+    *a = ni;
+    *no = qo - ni;
+}
+#endif
+
 /* The pairs within re_g and re_l (the fields pj, pr, gend, lend of mps) from the neighbour
  * list, whose reach is the largest radius and a skin: the loops over them need neither the
  * distances nor the pairs beyond their radius again. Within each radius the pairs keep the
@@ -800,7 +840,8 @@ static ry_status pairs_build(ry_sim *sim, mps *M, int fluid_rows, ry_error *err)
         double *rb = malloc((rowmax + 1) * sizeof *rb);
         uint32_t *oj = malloc((rowmax + 1) * sizeof *oj);
         double *orr = malloc((rowmax + 1) * sizeof *orr);
-        ok = rb && oj && orr;
+        uint8_t *mk = malloc(2 * (rowmax / 8 + 2)); /* (the SIMD path's masks) */
+        ok = rb && oj && orr && mk;
 #pragma omp for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
             if (!ok) continue;
@@ -815,60 +856,43 @@ static ry_status pairs_build(ry_sim *sim, mps *M, int fluid_rows, ry_error *err)
             size_t a = 0, no = 0;
 #ifdef RY_R2_SIMD
             if (dim == 3 && !periodic) { /* eight entries at a time: the same pairs, in order */
-                const __m512d xi[3] = {_mm512_set1_pd(x[0][i]), _mm512_set1_pd(x[1][i]),
-                                       _mm512_set1_pd(x[2][i])};
-                const __m512d vi = _mm512_set1_pd(ri2), vo = _mm512_set1_pd(ro2);
-                const __m128i z8 = _mm_setzero_si128();
-                for (size_t k = 0; k < nb; k += 8) {
-                    const __mmask8 m = ry_simd_lanes(nb - k);
-                    const __m256i idx = _mm256_maskz_loadu_epi32(m, nj + k);
-                    const __m512d v = ry_simd_r2(x, xi, idx, m);
-                    __mmask8 keep = m;
-                    if (cut)
-                        keep &= (__mmask8)_mm_cmpeq_epi8_mask(
-                            _mm_maskz_loadu_epi8((__mmask16)m, cut + lo + k), z8);
-                    const __mmask8 in = keep & _mm512_cmp_pd_mask(v, vi, _CMP_LT_OQ);
-                    const __mmask8 out = keep & _mm512_cmp_pd_mask(v, vi, _CMP_GE_OQ) &
-                                         _mm512_cmp_pd_mask(v, vo, _CMP_LT_OQ);
-                    a += ry_simd_append(in, idx, v, pj + a, pr + a);
-                    no += ry_simd_append(out, idx, v, oj + no, orr + no);
+                simd_pairs_row(x, i, nj, cut ? cut + lo : NULL, nb, ri2, ro2, rb, mk, pj, pr, &a,
+                               &no);
+            } else
+#endif
+            {
+                if (periodic) {
+                    double dx[3];
+                    for (size_t k = 0; k < nb; ++k) rb[k] = sep(sim, i, nj[k], dx);
+                } else if (dim == 3) {
+                    row_r2(3, x, i, nj, nb, rb);
+                } else if (dim == 2) {
+                    row_r2(2, x, i, nj, nb, rb);
+                } else {
+                    row_r2(1, x, i, nj, nb, rb);
                 }
-                goto split;
+                for (size_t k = 0; k < nb; ++k) {
+                    const double v = rb[k];
+                    const uint32_t j = nj[k];
+                    const int keep = !cut || !cut[lo + k];
+                    pj[a] = j;
+                    pr[a] = v;
+                    oj[no] = j;
+                    orr[no] = v;
+                    a += keep & (v < ri2);
+                    no += keep & (v >= ri2) & (v < ro2);
+                }
+                memcpy(pj + a, oj, no * sizeof *oj);
+                memcpy(pr + a, orr, no * sizeof *orr);
+                for (size_t k = 0; k < a + no; ++k) pr[k] = sqrt(pr[k]);
             }
-#endif
-            if (periodic) {
-                double dx[3];
-                for (size_t k = 0; k < nb; ++k) rb[k] = sep(sim, i, nj[k], dx);
-            } else if (dim == 3) {
-                row_r2(3, x, i, nj, nb, rb);
-            } else if (dim == 2) {
-                row_r2(2, x, i, nj, nb, rb);
-            } else {
-                row_r2(1, x, i, nj, nb, rb);
-            }
-            for (size_t k = 0; k < nb; ++k) {
-                const double v = rb[k];
-                const uint32_t j = nj[k];
-                const int keep = !cut || !cut[lo + k];
-                pj[a] = j;
-                pr[a] = v;
-                oj[no] = j;
-                orr[no] = v;
-                a += keep & (v < ri2);
-                no += keep & (v >= ri2) & (v < ro2);
-            }
-#ifdef RY_R2_SIMD
-        split:
-#endif
-            memcpy(pj + a, oj, no * sizeof *oj);
-            memcpy(pr + a, orr, no * sizeof *orr);
-            for (size_t k = 0; k < a + no; ++k) pr[k] = sqrt(pr[k]);
             M->gend[i] = lo + (g_inner ? a : a + no);
             M->lend[i] = lo + (g_inner ? a + no : a);
         }
         free(rb);
         free(oj);
         free(orr);
+        free(mk);
     }
     RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (MPS pairs)");
     /* the surface tension reads them where they reach its radius (until the particles move) */

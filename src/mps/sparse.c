@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <omp.h>
 
@@ -303,11 +304,12 @@ const ry_csr_dist *ry_particle_dist(ry_particle_unknowns *pu, ry_csr_dist *d) {
 
 ry_status ry_csr_deflation_reserve(ry_csr_deflation *d, size_t n, size_t m, ry_error *err) {
     /* every array of a kind grows together: one capacity each for n, m and u */
-    size_t cn[3] = {d->cap_n, d->cap_n, d->cap_n}, cm[3] = {d->cap_m, d->cap_m, d->cap_m};
+    size_t cn[4] = {d->cap_n, d->cap_n, d->cap_n, d->cap_n}, cm[3] = {d->cap_m, d->cap_m, d->cap_m};
     size_t cu = d->cap_u;
     int ok = grow((void **)&d->agg, &cn[0], n + 1, sizeof *d->agg) &&
              grow((void **)&d->rows, &cn[1], n + 1, sizeof *d->rows) &&
              grow((void **)&d->azn, &cn[2], n + 1, sizeof *d->azn) &&
+             grow((void **)&d->azo, &cn[3], n + 1, sizeof *d->azo) &&
              grow((void **)&d->u, &cu, 2 * RY_CSR_MAX_RHS * (n + 1), sizeof *d->u) &&
              grow((void **)&d->start, &cm[0], m + 1, sizeof *d->start) &&
              grow((void **)&d->lo, &cm[1], m + 1, sizeof *d->lo) &&
@@ -317,10 +319,10 @@ ry_status ry_csr_deflation_reserve(ry_csr_deflation *d, size_t n, size_t m, ry_e
     d->cap_n = cn[0];
     d->cap_m = cm[0];
     d->cap_u = cu;
-    for (int k = 1; k < 3; ++k) {
+    for (int k = 1; k < 4; ++k)
         if (cn[k] < d->cap_n) d->cap_n = cn[k];
+    for (int k = 1; k < 3; ++k)
         if (cm[k] < d->cap_m) d->cap_m = cm[k];
-    }
     return RY_OK;
 }
 
@@ -330,6 +332,7 @@ void ry_csr_deflation_free(ry_csr_deflation *d) {
     free(d->lo);
     free(d->rows);
     free(d->azn);
+    free(d->azo);
     free(d->azc);
     free(d->azv);
     free(d->e);
@@ -397,6 +400,16 @@ static int deflation_setup(const ry_csr *a, ry_csr_deflation *d) {
             azn[i] = cnt;
         }
     }
+    /* the rows packed one after the other, for the products of every iteration (each row
+     * moves to an earlier place or stays) */
+    size_t *azo = d->azo;
+    azo[0] = 0;
+    for (size_t i = 0; i < n; ++i) {
+        azo[i + 1] = azo[i] + azn[i];
+        if (azo[i] == a->row[i]) continue;
+        memmove(azc + azo[i], azc + a->row[i], azn[i] * sizeof *azc);
+        memmove(azv + azo[i], azv + a->row[i], azn[i] * sizeof *azv);
+    }
     /* row k of E: the rows of A Z of aggregate k's unknowns, in order; its first entry */
 #pragma omp parallel for schedule(dynamic, 4) if (m > 64)
     for (size_t k = 0; k < m; ++k) {
@@ -405,10 +418,10 @@ static int deflation_setup(const ry_csr *a, ry_csr_deflation *d) {
         size_t f = k;
         for (size_t s = start[k]; s < start[k + 1]; ++s) {
             const uint32_t i = d->rows[s];
-            for (uint32_t t = 0; t < azn[i]; ++t) {
-                const uint32_t l = azc[a->row[i] + t];
+            for (size_t t = azo[i]; t < azo[i + 1]; ++t) {
+                const uint32_t l = azc[t];
                 if (l > k) continue;
-                ek[l] += azv[a->row[i] + t];
+                ek[l] += azv[t];
                 if (l < f) f = l;
             }
         }
@@ -461,8 +474,7 @@ static void deflate(const ry_csr *a, const ry_csr_deflation *d, const double *v,
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (size_t i = 0; i < n; ++i) {
         double s = v[i];
-        const size_t base = a->row[i];
-        for (uint32_t t = 0; t < d->azn[i]; ++t) s -= d->azv[base + t] * d->c[d->azc[base + t]];
+        for (size_t t = d->azo[i]; t < d->azo[i + 1]; ++t) s -= d->azv[t] * d->c[d->azc[t]];
         out[i] = s;
     }
 }

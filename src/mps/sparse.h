@@ -87,8 +87,9 @@ typedef struct ry_csr_deflation {
     size_t *start;  /* each aggregate's unknowns in rows (m + 1) */
     size_t *lo;     /* the first column of each row of E within its envelope (m + 1) */
     uint32_t *rows; /* unknowns grouped by aggregate (n) */
-    uint32_t *azn;  /* entries of row i of A Z, stored from A's row start (n) */
-    uint32_t *azc;  /* their aggregates (A's entries) */
+    uint32_t *azn;  /* entries of row i of A Z (n) */
+    size_t *azo;    /* where row i of A Z starts, rows packed one after the other (n + 1) */
+    uint32_t *azc;  /* their aggregates (room for A's entries) */
     double *azv;    /* their values */
     double *e;      /* E, then its Cholesky factor (lower, m x m) */
     double *c;      /* a coarse vector (m) */
