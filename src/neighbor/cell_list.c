@@ -448,9 +448,21 @@ static inline size_t cells_row(const ry_cell_list *cl, const ry_nb_geom *g, int 
     }
     if (cnt > 64) {
         /* Runs from each cell are sorted; with particles ordered by cell, the whole list
-         * already is, and this is a linear check. */
-        size_t p = 1;
+         * already is, and this is a linear check. Between reorderings the few particles that
+         * changed cells leave it nearly sorted, and insertion sorts it in a few moves; past a
+         * budget of moves the radix sort takes over. */
+        size_t p = 1, moves = 0;
         while (p < cnt && out[p - 1] < out[p]) ++p;
+        for (; p < cnt && moves <= 4 * cnt; ++p) {
+            const uint32_t v = out[p];
+            size_t q = p;
+            while (q > 0 && out[q - 1] > v) {
+                out[q] = out[q - 1];
+                --q;
+            }
+            out[q] = v;
+            moves += p - q;
+        }
         if (p < cnt) radix_u32(out, cnt, tmp, passes);
     } else {
         for (size_t p = 1; p < cnt; ++p) {
