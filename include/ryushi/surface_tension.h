@@ -131,6 +131,11 @@ double ry_st_potential_pair_sum(int dim, double l0, double re);
 /* C from 2 sigma l0^(d-1) = C sum (eq. 11; in 2D per unit depth). */
 double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
 
+/* The potential model's acceleration of fluid particle i alone, added to a[d][i] (what
+ * ry_st_accelerate does for each, for a scheme that fuses it into a pass of its own). */
+void ry_st_potential_particle(const ry_surface_tension *st, const ry_sim *sim, size_t i,
+                              double *const a[3]);
+
 /* Adds the surface-tension acceleration to a[d][i] of every fluid particle. The neighbour list
  * of sim must hold all pairs within st->re. */
 ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],

@@ -102,6 +102,7 @@ typedef struct mps {
     size_t ccap;
     uint8_t *own;       /* distributed run: unknown k is this rank's own (not a halo copy) */
     uint8_t *near_surf; /* the rows with a free-surface particle among their pairs (n) */
+    double *divu;       /* the divergence of u* of each unknown (n) */
     double *ptmp;       /* distributed run: a vector of unknowns spread over the particles */
     /* The pairs within re_g and re_l at the current positions (pairs_build), in the rows of
      * the neighbour list: row i holds from sim->nl.offset[i] the pairs of the smaller radius,
@@ -428,6 +429,7 @@ static void mps_free(void *state) {
     free(M->pd);
     free(M->own);
     free(M->near_surf);
+    free(M->divu);
     free(M->ptmp);
     free(M->vgrad);
     free(M->wd);
@@ -470,6 +472,8 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (o) M->own = o;
     uint8_t *ns = realloc(M->near_surf, c * sizeof *ns);
     if (ns) M->near_surf = ns;
+    double *dv = realloc(M->divu, c * sizeof *dv);
+    if (dv) M->divu = dv;
     double *t = realloc(M->ptmp, c * sizeof *t);
     if (t) M->ptmp = t;
     size_t *ge = realloc(M->gend, c * sizeof *ge);
@@ -509,7 +513,7 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         if (cr) M->cut_row = cr;
     }
     RY_CHECK(err,
-             u && r && b && x && pd && o && ns && t && ge && le && (vg || !M->rheo_ob) &&
+             u && r && b && x && pd && o && ns && dv && t && ge && le && (vg || !M->rheo_ob) &&
                  (wv || M->wall_mode != WALLV_MIRRORED) && (wg || !M->body_group) &&
                  ((th && tv && tp && to && cr) || !M->body_thin),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
@@ -907,6 +911,7 @@ static ry_status pairs_build(ry_sim *sim, mps *M, int fluid_rows, ry_error *err)
  * surface (p = 0) for fluid and wall particles with n < beta n0 (walls above the water line);
  * the other wall particles with a fluid neighbour within re take part in the pressure
  * equation (those of thin bodies whatever their number density), the rest are dummies. */
+static double divergence(const ry_sim *sim, const mps *M, size_t i);
 static void number_density(ry_sim *sim, mps *M) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
@@ -931,6 +936,9 @@ static void number_density(ry_sim *sim, mps *M) {
                                                     : ROLE_WALL;
         }
         surf[i] = M->role[i] == ROLE_SURFACE && ps->kind[i] == RY_KIND_FLUID;
+        /* the source's divergence of u* for the unknowns, while the row's pairs are at hand */
+        if (M->gamma < 1.0 && (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL))
+            M->divu[i] = divergence(sim, M, i);
     }
 }
 
@@ -1216,15 +1224,18 @@ static ry_status assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double 
 
 /* `viscosity: mixed`: marks the fluid particles of the implicit solve (unk >= 0, numbered) and
  * gives the others their explicit u* = v + dt (a + nu lap v) in f_vs; returns the unknowns. */
-static size_t viscous_split(ry_sim *sim, mps *M, double dt) {
+static size_t viscous_split(ry_sim *sim, mps *M, double dt, int with_st) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
     const double cl = 2.0 * dim / (M->lambda * M->n0l);
+    double *a[3];
+    for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         M->unk[i] = -1;
         if (ps->kind[i] != RY_KIND_FLUID) continue;
+        if (with_st) ry_st_potential_particle(&M->st, sim, i, a); /* (mps_step) */
         double s[3];
         if (dt * cl * viscous_sums(sim, M, i, s) > MIXED_EXPLICIT_MAX) {
             M->unk[i] = 0; /* numbered below */
@@ -1243,7 +1254,7 @@ static size_t viscous_split(ry_sim *sim, mps *M, double dt) {
 /* Implicit viscosity: (1 - dt nu lap) u* = v + dt a, per component, walls as known values.
  * With `viscosity: mixed` only the stiff particles are unknowns (viscous_split); the others'
  * explicit u* enter their rows as known values, as the walls' velocities do. */
-static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err) {
+static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, int with_st, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
@@ -1251,7 +1262,7 @@ static ry_status viscous_implicit(ry_sim *sim, mps *M, double dt, ry_error *err)
     const int mixed = M->visc == VISC_MIXED && !sim->par;
     size_t nunk = 0;
     if (mixed)
-        nunk = viscous_split(sim, M, dt);
+        nunk = viscous_split(sim, M, dt, with_st);
     else
         for (size_t i = 0; i < n; ++i)
             M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
@@ -1521,7 +1532,7 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         if (M->unk[i] < 0) continue;
         const double rho = sim->mat[ps->material[i]].density;
         double b = g * rho / (dt * dt) * (M->dilate ? nd[i] - 1.0 : fmax(nd[i] - 1.0, 0.0));
-        if (g < 1.0) b -= (1.0 - g) * rho / dt * divergence(sim, M, i);
+        if (g < 1.0) b -= (1.0 - g) * rho / dt * M->divu[i]; /* (number_density) */
         for (size_t q = sim->nl.offset[i]; dirichlet && near[i] && q < M->lend[i]; ++q)
             if (M->role[M->pj[q]] == ROLE_SURFACE)
                 b += cl * ry_mps_weight_tamai(M->pr[q], rel) * M->pd[M->pj[q]];
@@ -1644,13 +1655,18 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
     for (size_t i = 0; i < n; ++i)
         for (int d = 0; d < dim; ++d) a[d][i] = ps->kind[i] == RY_KIND_FLUID ? sim->gravity[d] : 0;
-    if (!M->csf_pressure) RY_TRY(ry_st_accelerate(&M->st, sim, a, err));
+    /* The potential model's pass and the viscosity's split read the same pairs: with nothing
+     * between them that reads a neighbour's acceleration, one pass does both (the same sums) */
+    const int fuse = M->st.model == RY_ST_POTENTIAL && M->st.sigma != 0.0 && !M->csf_pressure &&
+                     !M->colour_on && M->wall_mode != WALLV_MIRRORED && !M->rheo_gnf &&
+                     !M->rheo_ob && M->visc == VISC_MIXED && !sim->par;
+    if (!M->csf_pressure && !fuse) RY_TRY(ry_st_accelerate(&M->st, sim, a, err));
     if (M->colour_on) RY_TRY(colour_accelerate(sim, M, a, err));
     if (M->wall_mode == WALLV_MIRRORED) wall_distances(sim, M);
     if (M->rheo_gnf || M->rheo_ob) rheology_explicit(sim, M, dt);
     if (M->visc == VISC_EXPLICIT) viscous_explicit(sim, M);
     if (M->visc == VISC_IMPLICIT || M->visc == VISC_MIXED) {
-        RY_TRY(viscous_implicit(sim, M, dt, err));
+        RY_TRY(viscous_implicit(sim, M, dt, fuse, err));
     } else {
         for (size_t i = 0; i < n; ++i)
             if (ps->kind[i] == RY_KIND_FLUID)

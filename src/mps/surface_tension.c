@@ -531,6 +531,13 @@ void ry_st_laplace_pressure(const ry_surface_tension *st, const ry_sim *sim, con
     for (size_t i = 0; i < n; ++i) pd[i] = st->sigma * pd[i] / (1.0 + fmax(pd[i], 0.0) * shift);
 }
 
+void ry_st_potential_particle(const ry_surface_tension *st, const ry_sim *sim, size_t i,
+                              double *const a[3]) {
+    double s[3], count;
+    st_sums(st, sim, i, s, &count);
+    for (int d = 0; d < sim->dim; ++d) a[d][i] += st->C * s[d] / sim->ps.f[RY_F_MASS][i];
+}
+
 ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, double *const a[3],
                            ry_error *err) {
     if (st->model == RY_ST_NONE || st->sigma == 0.0) return RY_OK;
@@ -541,12 +548,8 @@ ry_status ry_st_accelerate(const ry_surface_tension *st, const ry_sim *sim, doub
     const double *m = ps->f[RY_F_MASS];
     if (st->model == RY_ST_POTENTIAL) {
 #pragma omp parallel for schedule(dynamic, 64)
-        for (size_t i = 0; i < n; ++i) {
-            if (ps->kind[i] != RY_KIND_FLUID) continue;
-            double s[3], count;
-            st_sums(st, sim, i, s, &count);
-            for (int d = 0; d < dim; ++d) a[d][i] += st->C * s[d] / m[i];
-        }
+        for (size_t i = 0; i < n; ++i)
+            if (ps->kind[i] == RY_KIND_FLUID) ry_st_potential_particle(st, sim, i, a);
         return RY_OK;
     }
     double *kappa = malloc(8 * n * sizeof *kappa);
