@@ -912,33 +912,84 @@ static ry_status pairs_build(ry_sim *sim, mps *M, int fluid_rows, ry_error *err)
  * the other wall particles with a fluid neighbour within re take part in the pressure
  * equation (those of thin bodies whatever their number density), the rest are dummies. */
 static double divergence(const ry_sim *sim, const mps *M, size_t i);
+
+/* divergence() of particle i as a vector loop and a sum (3D, no periodic side): u[d] the
+ * velocity each particle brings (u* of the fluid, the velocity of the rest), bt and br2 room
+ * for the row's terms and squared distances. The same terms, summed in the same order. */
+static double divergence_lanes(const ry_sim *sim, const mps *M, size_t i, const double *const u[3],
+                               double *bt, double *br2) {
+    const double *x0 = sim->ps.f[RY_F_X], *x1 = sim->ps.f[RY_F_X + 1], *x2 = sim->ps.f[RY_F_X + 2],
+                 re = M->re_g;
+    const size_t q0 = sim->nl.offset[i], nb = M->gend[i] - q0;
+    const uint32_t *jj = M->pj + q0;
+    const double *rr = M->pr + q0, xi0 = x0[i], xi1 = x1[i], xi2 = x2[i];
+    const double ui0 = u[0][i], ui1 = u[1][i], ui2 = u[2][i];
+#pragma omp simd
+    for (size_t k = 0; k < nb; ++k) {
+        const uint32_t j = jj[k];
+        const double e0 = x0[j] - xi0, e1 = x1[j] - xi1, e2 = x2[j] - xi2;
+        double du = 0.0;
+        du += (u[0][j] - ui0) * e0;
+        du += (u[1][j] - ui1) * e1;
+        du += (u[2][j] - ui2) * e2;
+        const double r2 = e0 * e0 + e1 * e1 + e2 * e2, sr = rr[k] / re - 1.0;
+        br2[k] = r2;
+        bt[k] = du / r2 * (rr[k] < re ? sr * sr : 0.0);
+    }
+    double s = 0;
+    for (size_t k = 0; k < nb; ++k)
+        if (br2[k] > 0) s += bt[k];
+    return 3 * s / M->n0g;
+}
+
 static void number_density(ry_sim *sim, mps *M) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
+    const int dim = sim->dim;
     const double re = M->re_g, reach = M->wall_reach;
     double *nd = ps->f[M->f_nd], *surf = ps->f[M->f_surf];
-#pragma omp parallel for schedule(dynamic, 64)
-    for (size_t i = 0; i < n; ++i) {
-        double s = 0;
-        int fluid_near = 0;
-        for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
-            const double r = M->pr[q];
-            s += ry_mps_weight_tamai(r, re);
-            if (ps->kind[M->pj[q]] == RY_KIND_FLUID && r < reach) fluid_near = 1;
+    int periodic = 0;
+    for (int d = 0; d < dim; ++d) periodic |= sim->box.periodic[d];
+    const int div = M->gamma < 1.0, lanes = div && dim == 3 && !periodic;
+    /* (lanes) the velocity each particle brings to the divergence, in M->b, which the
+     * pressure equation fills only later */
+    double *u[3] = {M->b, M->b + n, M->b + 2 * n};
+    size_t rowmax = 0;
+    for (size_t i = 0; lanes && i < n; ++i) {
+        const int fl = ps->kind[i] == RY_KIND_FLUID;
+        for (int d = 0; d < 3; ++d) u[d][i] = (fl ? ps->f[M->f_vs[d]] : ps->f[RY_F_VX + d])[i];
+        if (M->gend[i] - sim->nl.offset[i] > rowmax) rowmax = M->gend[i] - sim->nl.offset[i];
+    }
+#pragma omp parallel
+    {
+        double *buf = lanes ? malloc(2 * (rowmax + 1) * sizeof *buf) : NULL;
+#pragma omp for schedule(dynamic, 64)
+        for (size_t i = 0; i < n; ++i) {
+            double s = 0;
+            int fluid_near = 0;
+            for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+                const double r = M->pr[q];
+                s += ry_mps_weight_tamai(r, re);
+                if (ps->kind[M->pj[q]] == RY_KIND_FLUID && r < reach) fluid_near = 1;
+            }
+            nd[i] = s / M->n0g;
+            if (ps->kind[i] == RY_KIND_FLUID) {
+                M->role[i] = nd[i] < M->beta ? ROLE_SURFACE : ROLE_FLUID;
+            } else {
+                const int thin = M->thin && M->thin[i] >= 0;
+                M->role[i] = !fluid_near                ? ROLE_DUMMY
+                             : nd[i] < M->beta && !thin ? ROLE_SURFACE
+                                                        : ROLE_WALL;
+            }
+            surf[i] = M->role[i] == ROLE_SURFACE && ps->kind[i] == RY_KIND_FLUID;
+            /* the source's divergence of u* for the unknowns, while the row's pairs are at
+             * hand */
+            if (div && (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL))
+                M->divu[i] = buf ? divergence_lanes(sim, M, i, (const double *const *)u, buf,
+                                                    buf + rowmax + 1)
+                                 : divergence(sim, M, i);
         }
-        nd[i] = s / M->n0g;
-        if (ps->kind[i] == RY_KIND_FLUID) {
-            M->role[i] = nd[i] < M->beta ? ROLE_SURFACE : ROLE_FLUID;
-        } else {
-            const int thin = M->thin && M->thin[i] >= 0;
-            M->role[i] = !fluid_near                ? ROLE_DUMMY
-                         : nd[i] < M->beta && !thin ? ROLE_SURFACE
-                                                    : ROLE_WALL;
-        }
-        surf[i] = M->role[i] == ROLE_SURFACE && ps->kind[i] == RY_KIND_FLUID;
-        /* the source's divergence of u* for the unknowns, while the row's pairs are at hand */
-        if (M->gamma < 1.0 && (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL))
-            M->divu[i] = divergence(sim, M, i);
+        free(buf);
     }
 }
 
@@ -1574,42 +1625,84 @@ static void correct(ry_sim *sim, mps *M, double dt) {
     const double re = M->re_g;
     const double *p = ps->f[RY_F_P];
     double *gx = M->xs; /* dim per particle */
-#pragma omp parallel for schedule(dynamic, 64)
-    for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
-        double pmin = p[i];
-        /* CSF in pressure form: a surface particle measures the gradient from its own pressure,
-         * the Laplace jump at its place. With the neighbourhood's least pressure (eq. 5) a
-         * protruding particle, whose larger curvature gives it the larger jump, would lose the
-         * difference that pushes it back, and the surface roughens until the drop breaks up. */
-        const int own = M->csf_pressure && M->role[i] == ROLE_SURFACE;
-        for (size_t q = sim->nl.offset[i]; M->pmin_on && !own && q < M->gend[i]; ++q)
-            if (M->role[M->pj[q]] != ROLE_DUMMY) {
-                const uint32_t j = M->pj[q];
-                double pj = p[j];
-                if (thin_normal(M, j)) { /* the side of a thin wall needs the separation */
-                    double dx[3];
-                    sep(sim, i, j, dx);
-                    pj = grad_pressure(M, p, j, dx);
+    int periodic = 0;
+    for (int d = 0; d < dim; ++d) periodic |= sim->box.periodic[d];
+    const int lanes = dim == 3 && !periodic; /* the pair terms' first half as a vector loop */
+    size_t rowmax = 0;
+    for (size_t i = 0; lanes && i < n; ++i)
+        if (M->gend[i] - sim->nl.offset[i] > rowmax) rowmax = M->gend[i] - sim->nl.offset[i];
+    const double *x0 = ps->f[RY_F_X], *x1 = ps->f[RY_F_X + (dim > 1)],
+                 *x2 = ps->f[RY_F_X + (dim > 2 ? 2 : 0)];
+#pragma omp parallel
+    {
+        /* each pair's separation, squared distance and w / r^2 (lanes) */
+        double *buf = lanes ? malloc(5 * (rowmax + 1) * sizeof *buf) : NULL;
+        double *bx = buf, *by = buf + rowmax + 1, *bz = by + rowmax + 1, *br2 = bz + rowmax + 1,
+               *bwr = br2 + rowmax + 1;
+#pragma omp for schedule(dynamic, 64)
+        for (size_t i = 0; i < n; ++i) {
+            if (ps->kind[i] != RY_KIND_FLUID) continue;
+            double pmin = p[i];
+            /* CSF in pressure form: a surface particle measures the gradient from its own pressure,
+             * the Laplace jump at its place. With the neighbourhood's least pressure (eq. 5) a
+             * protruding particle, whose larger curvature gives it the larger jump, would lose the
+             * difference that pushes it back, and the surface roughens until the drop breaks up. */
+            const int own = M->csf_pressure && M->role[i] == ROLE_SURFACE;
+            for (size_t q = sim->nl.offset[i]; M->pmin_on && !own && q < M->gend[i]; ++q)
+                if (M->role[M->pj[q]] != ROLE_DUMMY) {
+                    const uint32_t j = M->pj[q];
+                    double pj = p[j];
+                    if (thin_normal(M, j)) { /* the side of a thin wall needs the separation */
+                        double dx[3];
+                        sep(sim, i, j, dx);
+                        pj = grad_pressure(M, p, j, dx);
+                    }
+                    pmin = fmin(pmin, pj);
                 }
-                pmin = fmin(pmin, pj);
-            }
-        double m[3][3] = {{0}}, g[3] = {0, 0, 0}, x[3] = {0, 0, 0};
-        for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
-            const uint32_t j = M->pj[q];
-            double dx[3];
-            const double r2 = sep(sim, i, j, dx);
-            if (M->role[j] == ROLE_DUMMY || r2 <= 0) continue;
-            const double w = ry_mps_weight_tamai(M->pr[q], re), wr = w / r2;
-            const double pj = grad_pressure(M, p, j, dx);
-            for (int a = 0; a < dim; ++a) {
-                g[a] += wr * (pj - pmin) * dx[a];
-                for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
-            }
+            double m[3][3] = {{0}}, g[3] = {0, 0, 0}, x[3] = {0, 0, 0};
+            if (buf) { /* the same values as sep() and the weight below, eight pairs at a time */
+                const size_t q0 = sim->nl.offset[i], nb = M->gend[i] - q0;
+                const uint32_t *jj = M->pj + q0;
+                const double *rr = M->pr + q0, xi0 = x0[i], xi1 = x1[i], xi2 = x2[i];
+#pragma omp simd
+                for (size_t k = 0; k < nb; ++k) {
+                    const uint32_t j = jj[k];
+                    const double e0 = x0[j] - xi0, e1 = x1[j] - xi1, e2 = x2[j] - xi2;
+                    const double r2 = e0 * e0 + e1 * e1 + e2 * e2, s = rr[k] / re - 1.0;
+                    bx[k] = e0;
+                    by[k] = e1;
+                    bz[k] = e2;
+                    br2[k] = r2;
+                    bwr[k] = (rr[k] < re ? s * s : 0.0) / r2;
+                }
+                for (size_t k = 0; k < nb; ++k) {
+                    const uint32_t j = jj[k];
+                    if (M->role[j] == ROLE_DUMMY || br2[k] <= 0) continue;
+                    const double dx[3] = {bx[k], by[k], bz[k]}, wr = bwr[k];
+                    const double pj = grad_pressure(M, p, j, dx);
+                    for (int a = 0; a < 3; ++a) {
+                        g[a] += wr * (pj - pmin) * dx[a];
+                        for (int b = 0; b < 3; ++b) m[a][b] += wr * dx[a] * dx[b];
+                    }
+                }
+            } else
+                for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
+                    const uint32_t j = M->pj[q];
+                    double dx[3];
+                    const double r2 = sep(sim, i, j, dx);
+                    if (M->role[j] == ROLE_DUMMY || r2 <= 0) continue;
+                    const double w = ry_mps_weight_tamai(M->pr[q], re), wr = w / r2;
+                    const double pj = grad_pressure(M, p, j, dx);
+                    for (int a = 0; a < dim; ++a) {
+                        g[a] += wr * (pj - pmin) * dx[a];
+                        for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
+                    }
+                }
+            if (M->grad == GRAD_STANDARD || !ry_solve_small(dim, m, g, x))
+                for (int a = 0; a < dim; ++a) x[a] = dim * g[a] / M->n0g;
+            for (int a = 0; a < dim; ++a) gx[dim * i + a] = x[a];
         }
-        if (M->grad == GRAD_STANDARD || !ry_solve_small(dim, m, g, x))
-            for (int a = 0; a < dim; ++a) x[a] = dim * g[a] / M->n0g;
-        for (int a = 0; a < dim; ++a) gx[dim * i + a] = x[a];
+        free(buf);
     }
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
