@@ -34,6 +34,12 @@ static inline void ry_box_min_image(const ry_box *b, double *dx) {
     }
 }
 
+/* 3D with no periodic side: separations need no minimum image, and their three parts can be
+ * written out (kept in registers) instead of looped over the dimension. */
+static inline int ry_box_plain3(const ry_box *b) {
+    return b->dim == 3 && !b->periodic[0] && !b->periodic[1] && !b->periodic[2];
+}
+
 typedef struct ry_cell_list {
     int dim;
     double lo[3];      /* origin of cell (0,0,0) */

@@ -529,9 +529,14 @@ static const ry_csr_dist *dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d) {
     return ry_particle_dist(&M->pu, d);
 }
 
-/* Separation x_j - x_i (minimum image) and its square length. */
+/* Separation x_j - x_i (minimum image) and its square length. (In 3D with no periodic side
+ * written out: the same values, and the caller's dx can stay in registers.) */
 static inline double sep(const ry_sim *sim, size_t i, size_t j, double *dx) {
     const ry_particles *ps = &sim->ps;
+    if (ry_box_plain3(&sim->box)) {
+        for (int d = 0; d < 3; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+        return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+    }
     dx[0] = dx[1] = dx[2] = 0;
     for (int d = 0; d < sim->dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
     ry_box_min_image(&sim->box, dx);
@@ -1161,10 +1166,10 @@ static void rheology_explicit(ry_sim *sim, mps *M, double dt) {
 
 /* The viscous pair sums of fluid particle i: s = sum_j nu_ij w_ij (v_j - v_i) (times beta
  * with mirrored walls) and the return value sum_j nu_ij w_ij; nu lap v = cl s. */
-static inline double viscous_sums(const ry_sim *sim, const mps *M, size_t i, double s[3]) {
+static inline double viscous_sums_d(const ry_sim *sim, const mps *M, size_t i, double s[3],
+                                    int dim) {
     const ry_particles *ps = &sim->ps;
     const double re = M->re_l;
-    const int dim = sim->dim;
     const double *v[3];
     double c = 0, t[3] = {0, 0, 0}, vi[3] = {0, 0, 0};
     for (int d = 0; d < dim; ++d) {
@@ -1182,6 +1187,11 @@ static inline double viscous_sums(const ry_sim *sim, const mps *M, size_t i, dou
     s[1] = t[1];
     s[2] = t[2];
     return c;
+}
+
+/* (in 3D with a literal dimension: the sums stay in registers) */
+static inline double viscous_sums(const ry_sim *sim, const mps *M, size_t i, double s[3]) {
+    return sim->dim == 3 ? viscous_sums_d(sim, M, i, s, 3) : viscous_sums_d(sim, M, i, s, sim->dim);
 }
 
 /* a += nu lap v (explicit viscosity, eq. 7) for fluid particles; walls enter with their

@@ -46,36 +46,65 @@ void ry_csr_free(ry_csr *a) {
     *a = (ry_csr){0};
 }
 
-/* y_k = A x_k for k < m (m at most RY_CSR_MAX_RHS): one pass over the matrix for all of them,
- * each sum in the order of the row (the same bits as one product at a time). Call with a
- * literal m, so that the sums stay in registers. */
-static inline void csr_mul_m(const ry_csr *a, int m, const double *const *x, double *const *y) {
-    const size_t n = a->n;
-    /* (threads pay from some 30,000 entries on: a few thousand rows of a 3D Laplacian) */
-#pragma omp parallel for schedule(static) if (a->row[n] > 30000)
-    for (size_t i = 0; i < n; ++i) {
-        double s[RY_CSR_MAX_RHS] = {0};
-        for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) {
-            const double v = a->val[q];
-            const uint32_t c = a->col[q];
-            for (int k = 0; k < m; ++k) s[k] += v * x[k][c];
-        }
-        for (int k = 0; k < m; ++k) y[k][i] = s[k];
+/* y_k[i] = (A x_k)_i for k < m: each sum in the order of the row (the same bits as one product
+ * at a time). Inlined with a literal m, so that the sums stay in registers. */
+static inline void csr_row_m(const ry_csr *a, size_t i, int m, const double *const *x,
+                             double *const *y) {
+    double s[RY_CSR_MAX_RHS] = {0};
+    for (size_t q = a->row[i]; q < a->row[i + 1]; ++q) {
+        const double v = a->val[q];
+        const uint32_t c = a->col[q];
+        for (int k = 0; k < m; ++k) s[k] += v * x[k][c];
     }
+    for (int k = 0; k < m; ++k) y[k][i] = s[k];
 }
 
-static void csr_mul_any(const ry_csr *a, int m, const double *const *x, double *const *y) {
-    switch (m) {
-    case 1:
-        csr_mul_m(a, 1, x, y);
-        break;
-    case 2:
-        csr_mul_m(a, 2, x, y);
-        break;
-    default:
-        csr_mul_m(a, 3, x, y);
-        break;
+/* (threads pay from some 30,000 entries on: a few thousand rows of a 3D Laplacian) */
+#define CSR_THREADED(a) ((a)->row[(a)->n] > 30000)
+
+/* y = A x with the rows taken two at a time, their sums side by side: each sum is one chain
+ * of additions in the order of its row, so two chains overlap where one would wait on the
+ * latency of each addition. The same bits as row by row. */
+static void csr_mul1(const ry_csr *a, const double *x, double *y) {
+    const size_t n = a->n, *row = a->row;
+    const uint32_t *col = a->col;
+    const double *val = a->val;
+#pragma omp parallel for schedule(static) if (CSR_THREADED(a))
+    for (size_t h = 0; h < n / 2; ++h) {
+        const size_t i = 2 * h, q0 = row[i], q1 = row[i + 1], e1 = row[i + 2];
+        const size_t l0 = q1 - q0, l1 = e1 - q1, l = l0 < l1 ? l0 : l1;
+        double s0 = 0, s1 = 0;
+        for (size_t k = 0; k < l; ++k) {
+            s0 += val[q0 + k] * x[col[q0 + k]];
+            s1 += val[q1 + k] * x[col[q1 + k]];
+        }
+        for (size_t k = l; k < l0; ++k) s0 += val[q0 + k] * x[col[q0 + k]];
+        for (size_t k = l; k < l1; ++k) s1 += val[q1 + k] * x[col[q1 + k]];
+        y[i] = s0;
+        y[i + 1] = s1;
     }
+    if (n % 2) csr_row_m(a, n - 1, 1, &x, &y);
+}
+
+/* y_k = A x_k for k < m (2 or 3): one pass over the matrix for all of them. */
+static void csr_mul2(const ry_csr *a, const double *const *x, double *const *y) {
+#pragma omp parallel for schedule(static) if (CSR_THREADED(a))
+    for (size_t i = 0; i < a->n; ++i) csr_row_m(a, i, 2, x, y);
+}
+
+static void csr_mul3(const ry_csr *a, const double *const *x, double *const *y) {
+#pragma omp parallel for schedule(static) if (CSR_THREADED(a))
+    for (size_t i = 0; i < a->n; ++i) csr_row_m(a, i, 3, x, y);
+}
+
+/* (one function per m: an OpenMP region is outlined before m could be propagated into it) */
+static void csr_mul_any(const ry_csr *a, int m, const double *const *x, double *const *y) {
+    if (m == 1)
+        csr_mul1(a, x[0], y[0]);
+    else if (m == 2)
+        csr_mul2(a, x, y);
+    else
+        csr_mul3(a, x, y);
 }
 
 void ry_csr_mul(const ry_csr *a, const double *x, double *y) {

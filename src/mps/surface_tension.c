@@ -231,12 +231,13 @@ static void thin_images(const ry_surface_tension *st, int dim, uint32_t j, const
 /* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai
  * weight) or the potential force sum_j f(r) (x_j - x_i)/r, with the images of thin walls
  * (thin_images); *count receives the neighbours. */
-static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
-                    double *count) {
+static inline void st_sums_k(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
+                             double *count, int plain3) {
     const ry_particles *ps = &sim->ps;
     const int csf = st->model == RY_ST_CSF;
     const int images = !csf && st->thin_normal && st->thin_layers > 1;
     const double re = st->re, re2 = re * re;
+    const double *X = ps->f[RY_F_X], *Y = ps->f[RY_F_Y], *Z = ps->f[RY_F_Z];
     /* the scheme's pairs (their distances known, the cut ones and most beyond re left out),
      * or the neighbour list */
     const int own = st->pair_j != NULL;
@@ -246,13 +247,23 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
     for (size_t q = q0; q < q1; ++q) {
         if (!own && st->cut && st->cut[q]) continue;
         const uint32_t j = js[q];
-        double dx[3], r;
+        double dx0, dx1, dx2, r, r2;
+        if (plain3) {
+            dx0 = X[j] - X[i];
+            dx1 = Y[j] - Y[i];
+            dx2 = Z[j] - Z[i];
+            r2 = dx0 * dx0 + dx1 * dx1 + dx2 * dx2; /* (the loop's 0 + ... adds nothing) */
+        } else {
+            double dx[3];
+            r2 = pair_sep(sim, i, j, dx);
+            dx0 = dx[0];
+            dx1 = dx[1];
+            dx2 = dx[2];
+        }
         if (own) {
             r = st->pair_r[q];
             if (r >= re || r <= 0) continue;
-            pair_sep(sim, i, j, dx);
         } else {
-            const double r2 = pair_sep(sim, i, j, dx);
             if (r2 >= re2 || r2 <= 0) continue; /* (a third of the list lies beyond re) */
             r = sqrt(r2);
         }
@@ -261,15 +272,26 @@ static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, d
         const double f = c * (csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re));
         const double g = f / r;
         cnt += csf ? f : 1.0;
-        s0 += g * dx[0]; /* dx is zero beyond the dimension */
-        s1 += g * dx[1];
-        s2 += g * dx[2];
-        if (images && ps->kind[j] == RY_KIND_WALL) thin_images(st, sim->dim, j, dx, c, im);
+        s0 += g * dx0; /* dx is zero beyond the dimension */
+        s1 += g * dx1;
+        s2 += g * dx2;
+        if (images && ps->kind[j] == RY_KIND_WALL) {
+            const double dx[3] = {dx0, dx1, dx2};
+            thin_images(st, sim->dim, j, dx, c, im);
+        }
     }
     s[0] = s0 + im[0];
     s[1] = s1 + im[1];
     s[2] = s2 + im[2];
     *count = cnt;
+}
+
+static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
+                    double *count) {
+    if (ry_box_plain3(&sim->box))
+        st_sums_k(st, sim, i, s, count, 1);
+    else
+        st_sums_k(st, sim, i, s, count, 0);
 }
 
 /* Wetting (CSF): the wall normal n_w at fluid particle i, -sum_walls w x_ij / r normalised
