@@ -34,10 +34,12 @@ static inline void ry_box_min_image(const ry_box *b, double *dx) {
     }
 }
 
-/* 3D with no periodic side: separations need no minimum image, and their three parts can be
- * written out (kept in registers) instead of looped over the dimension. */
-static inline int ry_box_plain3(const ry_box *b) {
-    return b->dim == 3 && !b->periodic[0] && !b->periodic[1] && !b->periodic[2];
+/* The dimension (2 or 3) of a box with no periodic side, else 0: there separations need no
+ * minimum image, and their parts can be written out (kept in registers) instead of looped
+ * over a dimension read at run time. */
+static inline int ry_box_plain(const ry_box *b) {
+    if (b->periodic[0] || b->periodic[1] || b->periodic[2]) return 0;
+    return b->dim == 2 || b->dim == 3 ? b->dim : 0;
 }
 
 typedef struct ry_cell_list {

@@ -2,8 +2,7 @@
 #include "ryushi/sim.h"
 
 /* The collision impulse s of fluid particle i from the entries q0..q1-1 of nj (inlined with a
- * literal dim, and plain: 3D with no periodic side, so that the separations stay in
- * registers). */
+ * literal dim, and plain: no periodic side, so that the separations stay in registers). */
 static inline void collide_row(const ry_sim *sim, size_t i, size_t q0, size_t q1,
                                const uint32_t *nj, double rc2, double f, double s[3], int dim,
                                int plain) {
@@ -27,7 +26,7 @@ void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, const 
                    const size_t *row_end, double *dv) {
     if (rc <= 0) return;
     ry_particles *ps = &sim->ps;
-    const int dim = sim->dim, plain = ry_box_plain3(&sim->box);
+    const int dim = sim->dim, plain = ry_box_plain(&sim->box);
     const size_t n = ps->n;
     const double rc2 = rc * rc, f = 0.5 * (1.0 + restitution);
     if (!nj) nj = sim->nl.j;
@@ -37,8 +36,10 @@ void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, const 
         if (ps->kind[i] == RY_KIND_FLUID) {
             const size_t q0 = sim->nl.offset[i];
             const size_t q1 = row_end ? row_end[i] : sim->nl.offset[i + 1];
-            if (plain)
+            if (plain == 3)
                 collide_row(sim, i, q0, q1, nj, rc2, f, s, 3, 1);
+            else if (plain == 2)
+                collide_row(sim, i, q0, q1, nj, rc2, f, s, 2, 1);
             else
                 collide_row(sim, i, q0, q1, nj, rc2, f, s, dim, 0);
         }

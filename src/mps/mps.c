@@ -529,12 +529,14 @@ static const ry_csr_dist *dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d) {
     return ry_particle_dist(&M->pu, d);
 }
 
-/* Separation x_j - x_i (minimum image) and its square length. (In 3D with no periodic side
- * written out: the same values, and the caller's dx can stay in registers.) */
+/* Separation x_j - x_i (minimum image) and its square length. (With no periodic side written
+ * out: the same values, and the caller's dx can stay in registers.) */
 static inline double sep(const ry_sim *sim, size_t i, size_t j, double *dx) {
     const ry_particles *ps = &sim->ps;
-    if (ry_box_plain3(&sim->box)) {
-        for (int d = 0; d < 3; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+    const int plain = ry_box_plain(&sim->box);
+    if (plain) {
+        for (int d = 0; d < 2; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
+        dx[2] = plain == 3 ? ps->f[RY_F_Z][j] - ps->f[RY_F_Z][i] : 0.0;
         return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
     }
     dx[0] = dx[1] = dx[2] = 0;
@@ -1189,9 +1191,11 @@ static inline double viscous_sums_d(const ry_sim *sim, const mps *M, size_t i, d
     return c;
 }
 
-/* (in 3D with a literal dimension: the sums stay in registers) */
+/* (with a literal dimension: the sums stay in registers) */
 static inline double viscous_sums(const ry_sim *sim, const mps *M, size_t i, double s[3]) {
-    return sim->dim == 3 ? viscous_sums_d(sim, M, i, s, 3) : viscous_sums_d(sim, M, i, s, sim->dim);
+    if (sim->dim == 3) return viscous_sums_d(sim, M, i, s, 3);
+    if (sim->dim == 2) return viscous_sums_d(sim, M, i, s, 2);
+    return viscous_sums_d(sim, M, i, s, sim->dim);
 }
 
 /* a += nu lap v (explicit viscosity, eq. 7) for fluid particles; walls enter with their

@@ -232,7 +232,7 @@ static void thin_images(const ry_surface_tension *st, int dim, uint32_t j, const
  * weight) or the potential force sum_j f(r) (x_j - x_i)/r, with the images of thin walls
  * (thin_images); *count receives the neighbours. */
 static inline void st_sums_k(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
-                             double *count, int plain3) {
+                             double *count, int plain) {
     const ry_particles *ps = &sim->ps;
     const int csf = st->model == RY_ST_CSF;
     const int images = !csf && st->thin_normal && st->thin_layers > 1;
@@ -248,11 +248,11 @@ static inline void st_sums_k(const ry_surface_tension *st, const ry_sim *sim, si
         if (!own && st->cut && st->cut[q]) continue;
         const uint32_t j = js[q];
         double dx0, dx1, dx2, r, r2;
-        if (plain3) {
+        if (plain) { /* (the loop's 0 + ... adds nothing; in 2D neither does dx2) */
             dx0 = X[j] - X[i];
             dx1 = Y[j] - Y[i];
-            dx2 = Z[j] - Z[i];
-            r2 = dx0 * dx0 + dx1 * dx1 + dx2 * dx2; /* (the loop's 0 + ... adds nothing) */
+            dx2 = plain == 3 ? Z[j] - Z[i] : 0.0;
+            r2 = plain == 3 ? dx0 * dx0 + dx1 * dx1 + dx2 * dx2 : dx0 * dx0 + dx1 * dx1;
         } else {
             double dx[3];
             r2 = pair_sep(sim, i, j, dx);
@@ -288,10 +288,16 @@ static inline void st_sums_k(const ry_surface_tension *st, const ry_sim *sim, si
 
 static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
                     double *count) {
-    if (ry_box_plain3(&sim->box))
-        st_sums_k(st, sim, i, s, count, 1);
-    else
+    switch (ry_box_plain(&sim->box)) {
+    case 3:
+        st_sums_k(st, sim, i, s, count, 3);
+        break;
+    case 2:
+        st_sums_k(st, sim, i, s, count, 2);
+        break;
+    default:
         st_sums_k(st, sim, i, s, count, 0);
+    }
 }
 
 /* Wetting (CSF): the wall normal n_w at fluid particle i, -sum_walls w x_ij / r normalised
