@@ -635,7 +635,25 @@ static void wall_extrapolate(const iisph *s, double *p) {
 }
 
 /* S_i = sum_j d_ij p_j = -(dt^2 / m_i) sum_j p_j / delta_j^2 grad_i W_ij over mobile j, and
- * over walls with their extrapolated pressure and the volume of i. */
+ * over walls with their extrapolated pressure and the volume of i. Row i, inlined with a
+ * literal dim so that the sums stay in registers. */
+static inline void pressure_sum_row(const grad_list *gl, const uint8_t *kind, const double *m,
+                                    const double *delta, const double *p, double dt2, size_t i,
+                                    double *out, int dim) {
+    double a[3] = {0, 0, 0};
+    if (MOBILE[kind[i]]) {
+        const double di2 = delta[i] * delta[i];
+        for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
+            const uint32_t j = gl->j[e];
+            const double *G = gl->g + 3 * e;
+            const double f = MOBILE[kind[j]] ? p[j] / (delta[j] * delta[j]) : p[j] / di2;
+            for (int d = 0; d < dim; ++d) a[d] += f * G[d];
+        }
+        for (int d = 0; d < dim; ++d) a[d] *= -dt2 / m[i];
+    }
+    for (int d = 0; d < 3; ++d) out[d] = a[d];
+}
+
 static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
@@ -645,19 +663,37 @@ static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
     const double *m = ps->f[RY_F_MASS], *delta = s->delta;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        double a[3] = {0, 0, 0};
-        if (MOBILE[kind[i]]) {
-            const double di2 = delta[i] * delta[i];
-            for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-                const uint32_t j = gl->j[e];
-                const double *G = gl->g + 3 * e;
-                const double f = MOBILE[kind[j]] ? p[j] / (delta[j] * delta[j]) : p[j] / di2;
-                for (int d = 0; d < dim; ++d) a[d] += f * G[d];
-            }
-            for (int d = 0; d < dim; ++d) a[d] *= -dt2 / m[i];
-        }
-        for (int d = 0; d < 3; ++d) s->sum[3 * i + d] = a[d];
+        double *out = s->sum + 3 * i;
+        if (dim == 3)
+            pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, 3);
+        else if (dim == 2)
+            pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, 2);
+        else
+            pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, dim);
     }
+}
+
+/* The Jacobi update's sum over the pairs of fluid particle i: sum_j (S_i - D_j) . grad_i W_ij,
+ * with D_j the part of j's sum without p_i (inlined with a literal dim). */
+static inline double jacobi_rest(const iisph *s, const grad_list *gl, const uint8_t *kind,
+                                 const double *m, const double *p, double dt2, size_t i, int dim) {
+    const double *si = s->sum + 3 * i;
+    const double di2 = s->delta[i] * s->delta[i];
+    double rest = 0;
+    for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
+        const uint32_t j = gl->j[e];
+        const double *G = gl->g + 3 * e;
+        double t = 0;
+        for (int d = 0; d < dim; ++d) t += si[d] * G[d];
+        if (MOBILE[kind[j]]) {
+            /* D_j without the part from p_i: d_jj p_j + S_j - d_ji p_i */
+            const double *sj = s->sum + 3 * j, *djj = s->dii + 3 * j;
+            const double cji = dt2 / (m[j] * di2) * p[i]; /* d_ji p_i = cji grad_i W_ij */
+            for (int d = 0; d < dim; ++d) t -= (djj[d] * p[j] + sj[d] - cji * G[d]) * G[d];
+        }
+        rest += t;
+    }
+    return rest;
 }
 
 /* The pressure Poisson equation by relaxed Jacobi; returns the iterations. */
@@ -745,22 +781,9 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
                 pnew[i] = p[i];
                 continue;
             }
-            const double *si = s->sum + 3 * i;
-            const double di2 = delta[i] * delta[i];
-            double rest = 0;
-            for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-                const uint32_t j = gl->j[e];
-                const double *G = gl->g + 3 * e;
-                double t = 0;
-                for (int d = 0; d < dim; ++d) t += si[d] * G[d];
-                if (MOBILE[kind[j]]) {
-                    /* D_j without the part from p_i: d_jj p_j + S_j - d_ji p_i */
-                    const double *sj = s->sum + 3 * j, *djj = s->dii + 3 * j;
-                    const double cji = dt2 / (m[j] * di2) * p[i]; /* d_ji p_i = cji grad_i W_ij */
-                    for (int d = 0; d < dim; ++d) t -= (djj[d] * p[j] + sj[d] - cji * G[d]) * G[d];
-                }
-                rest += t;
-            }
+            const double rest = dim == 3   ? jacobi_rest(s, gl, kind, m, p, dt2, i, 3)
+                                : dim == 2 ? jacobi_rest(s, gl, kind, m, p, dt2, i, 2)
+                                           : jacobi_rest(s, gl, kind, m, p, dt2, i, dim);
             const double aii = s->aii[i];
             const double err = aii * p[i] + rest + s->dstar[i] - d0; /* delta - delta_0 now */
             double pn = 0;
