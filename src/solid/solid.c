@@ -515,13 +515,12 @@ RY_SOLID_INLINE void strain_gradient(ry_sim *sim, solid *s, size_t i, const doub
     }
 }
 
-/* Pass 1: F_i, stress, A_i = P_i L_i for every particle (clamped ones included). */
-RY_SOLID_INLINE void stresses_dim(ry_sim *sim, solid *s, const int dim) {
+/* Pass 1: F_i, stress, A_i = P_i L_i for every particle (clamped ones included); particle i,
+ * inlined with a literal dim into the loop of stresses() (RY_SOLID_ROWS). */
+RY_SOLID_INLINE void stresses_dim(ry_sim *sim, solid *s, size_t i, const int dim) {
     ry_particles *ps = &sim->ps;
-    const size_t n = ps->n;
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
-#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
-    for (size_t i = 0; i < n; ++i) {
+    {
         double F[9] = {0}, E[9] = {0}, S[9] = {0}, P[9] = {0};
         for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
             const size_t j = s->nl.j[q];
@@ -573,19 +572,18 @@ RY_SOLID_INLINE void stresses_dim(ry_sim *sim, solid *s, const int dim) {
     }
 }
 
-/* Pass 2: accelerations of the free particles and the residual. */
-RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, const int dim) {
+/* Pass 2: the acceleration of particle i (zero where it is not free; inlined as
+ * stresses_dim). */
+RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) {
     ry_particles *ps = &sim->ps;
-    const size_t n = ps->n;
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
     const double *X[3] = {ps->f[s->f_X[0]], ps->f[s->f_X[1]], dim > 2 ? ps->f[s->f_X[2]] : NULL};
     const double hg = s->hourglass;
-#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
-    for (size_t i = 0; i < n; ++i) {
-        if (ps->kind[i] != RY_KIND_SOLID) {
-            ry_solid_accelerate(sim, s, i, NULL, dim);
-            continue;
-        }
+    if (ps->kind[i] != RY_KIND_SOLID) {
+        ry_solid_accelerate(sim, s, i, NULL, dim);
+        return;
+    }
+    {
         double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
         const double *Ai = s->A + 9 * i, *Fi = s->F + 9 * i;
         const double vi = s->vol[i];
@@ -629,7 +627,6 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, const int dim) {
         for (int a = 0; a < dim; ++a) f[a] += vi * hg * fh[a];
         ry_solid_accelerate(sim, s, i, f, dim);
     }
-    ry_solid_residual_update(sim, s);
 }
 
 void ry_solid_accelerate(ry_sim *sim, solid *s, size_t i, const double *f, int dim) {
@@ -679,16 +676,12 @@ void ry_solid_residual_update(ry_sim *sim, solid *s) {
 
 /* The pair loops with the dimension a compile-time constant. */
 static void stresses(ry_sim *sim, solid *s) {
-    if (sim->dim == 2)
-        stresses_dim(sim, s, 2);
-    else
-        stresses_dim(sim, s, 3);
+    RY_SOLID_ROWS(sim, i, stresses_dim(sim, s, i, 2), stresses_dim(sim, s, i, 3));
 }
+/* Accelerations of the free particles and the residual. */
 static void forces(ry_sim *sim, solid *s) {
-    if (sim->dim == 2)
-        forces_dim(sim, s, 2);
-    else
-        forces_dim(sim, s, 3);
+    RY_SOLID_ROWS(sim, i, forces_dim(sim, s, i, 2), forces_dim(sim, s, i, 3));
+    ry_solid_residual_update(sim, s);
 }
 
 /* Forces for the current positions and velocities; the updated-Lagrangian form also advances

@@ -18,6 +18,25 @@ enum { INTEGRATION_NODAL, INTEGRATION_GRADIENT };
 enum { RY_SOLID_PARALLEL_MIN = 8192 };
 #define RY_SOLID_INLINE static inline __attribute__((always_inline))
 
+/* A pass over the particles: the statement row2 or row3 (a row function called with the
+ * literal dimension 2 or 3) for every particle i. The OpenMP region holds the calls, not the
+ * other way round: a region is outlined before constants reach it, so a region inside a
+ * function called with 2 and with 3 would serve both, the dimension read at run time. */
+/* clang-format off */
+#define RY_SOLID_ROWS(sim, i, row2, row3)                                                          \
+    do {                                                                                           \
+        const size_t ry_rows_n = (sim)->ps.n;                                                      \
+        const int ry_rows_dim = (sim)->dim;                                                        \
+        _Pragma("omp parallel for schedule(static) if (ry_rows_n >= RY_SOLID_PARALLEL_MIN)")       \
+        for (size_t i = 0; i < ry_rows_n; ++i) {                                                   \
+            if (ry_rows_dim == 2)                                                                  \
+                row2;                                                                              \
+            else                                                                                   \
+                row3;                                                                              \
+        }                                                                                          \
+    } while (0)
+/* clang-format on */
+
 typedef struct solid {
     int correction, plane, load, relax, clamp, integration;
     double load_q, load_dir[3], damping, residual_tol;

@@ -152,11 +152,10 @@ static point3 xi_of(const double *const x[3], size_t i, int dim) {
     return r;
 }
 
-/* Pass 1: velocity gradient, correction matrix, density rate, deviatoric stress advanced by
- * dt. */
-RY_SOLID_INLINE void rates_dim(ry_sim *sim, solid *s, double dt, const int dim) {
+/* Pass 1, particle i: velocity gradient, correction matrix, density rate, deviatoric stress
+ * advanced by dt. */
+RY_SOLID_INLINE void rates_dim(ry_sim *sim, solid *s, size_t i, double dt, const int dim) {
     ry_particles *ps = &sim->ps;
-    const size_t n = ps->n;
     const ry_kernel *k = &sim->kernel;
     const double r2max = k->radius * k->radius;
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
@@ -164,8 +163,7 @@ RY_SOLID_INLINE void rates_dim(ry_sim *sim, solid *s, double dt, const int dim) 
     const double *rho = ps->f[RY_F_RHO], *mass = ps->f[RY_F_MASS];
     double *drho = ps->f[RY_F_DRHO];
     const int corr = s->correction != CORR_NONE, quad = s->correction == CORR_QUADRATIC;
-#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
-    for (size_t i = 0; i < n; ++i) {
+    {
         double B[9] = {0}, Lv[9] = {0}, L[9] = {0}, gv[9] = {0};
         const size_t o = sim->nl.offset[i], nn = sim->nl.offset[i + 1] - o;
         if (quad) {
@@ -213,8 +211,8 @@ RY_SOLID_INLINE void rates_dim(ry_sim *sim, solid *s, double dt, const int dim) 
         double tr = 0;
         for (int a = 0; a < dim; ++a) tr += gv[4 * a];
         drho[i] = -rho[i] * tr;
-        if (dt == 0) continue;
-        double S[9] = {0}, Sd[9];
+        if (dt == 0) return;
+        double S[9] = {0}, Sd[9] = {0}; /* (Sd: read only where written) */
         for (int c = 0; c < 6; ++c)
             if (s->f_S[c] >= 0)
                 S[3 * comp_a[c] + comp_b[c]] = S[3 * comp_b[c] + comp_a[c]] = ps->f[s->f_S[c]][i];
@@ -269,10 +267,9 @@ static void stress_state(ry_sim *sim, solid *s, double dt) {
     }
 }
 
-/* Pass 2: accelerations of the free particles and their net forces. */
-RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, const int dim) {
+/* Pass 2, particle i: its acceleration where it is free, and its net force. */
+RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) {
     ry_particles *ps = &sim->ps;
-    const size_t n = ps->n;
     const ry_kernel *k = &sim->kernel;
     const double r2max = k->radius * k->radius, h = k->h, c = s->c_max;
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
@@ -280,11 +277,10 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, const int dim) {
     const double *rho = ps->f[RY_F_RHO], *mass = ps->f[RY_F_MASS];
     const double iwdx = 1.0 / ry_kernel_w(k, sim->dx), eps = s->as_eps, expo = s->as_n;
     const int quad = s->correction == CORR_QUADRATIC, face = s->clamp == CLAMP_FACE;
-#pragma omp parallel for schedule(static) if (n >= RY_SOLID_PARALLEL_MIN)
-    for (size_t i = 0; i < n; ++i) {
+    {
         if (ps->kind[i] != RY_KIND_SOLID) {
             ry_solid_accelerate(sim, s, i, NULL, dim);
-            continue;
+            return;
         }
         const double *si = s->sig + 9 * i, *Li = s->Lc + 9 * i, *Ri = s->Ras + 9 * i;
         const double vi = mass[i] / rho[i];
@@ -374,15 +370,9 @@ static ry_status quadratic_pairs(ry_sim *sim, solid *s, ry_error *err) {
 ry_status ry_solid_ul_evaluate(ry_sim *sim, solid *s, double dt, ry_error *err) {
     RY_TRY(ry_sim_neighbors(sim, sim->kernel.radius, err));
     if (s->correction == CORR_QUADRATIC) RY_TRY(quadratic_pairs(sim, s, err));
-    if (sim->dim == 2)
-        rates_dim(sim, s, dt, 2);
-    else
-        rates_dim(sim, s, dt, 3);
+    RY_SOLID_ROWS(sim, i, rates_dim(sim, s, i, dt, 2), rates_dim(sim, s, i, dt, 3));
     stress_state(sim, s, dt);
-    if (sim->dim == 2)
-        forces_dim(sim, s, 2);
-    else
-        forces_dim(sim, s, 3);
+    RY_SOLID_ROWS(sim, i, forces_dim(sim, s, i, 2), forces_dim(sim, s, i, 3));
     ry_solid_residual_update(sim, s);
     return RY_OK;
 }
