@@ -305,17 +305,59 @@ static void viscous_velocities(ry_sim *sim, iisph *s) {
 
 /* Number density, density, and the non-pressure accelerations (gravity, viscosity, polymer
  * stress) into acc. */
+/* The viscous (explicit) and body-force acceleration of particle i into out[0..2] (zero where
+ * it is not mobile); inlined with a literal dim, so that the sums stay in registers. */
+static inline void force_row(const ry_sim *sim, const iisph *s, size_t i, const double *const vg[3],
+                             double *out, int dim) {
+    const ry_particles *ps = &sim->ps;
+    const size_t *off = sim->nl.offset;
+    const uint32_t *nb = s->pc.j; /* the pairs within the support */
+    const size_t *end = s->pc.end;
+    const uint8_t *kind = ps->kind;
+    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+    const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h, cvis = 2.0 * (dim + 2);
+    double a[3] = {0, 0, 0};
+    if (MOBILE[kind[i]]) {
+        const double mui = dyn_viscosity(sim, s, i);
+        for (size_t q = off[i]; !s->implicit && q < end[i]; ++q) {
+            const uint32_t j = nb[q];
+            const double *P = cv + q * RY_PAIR_STRIDE;
+            if (P[RY_PW_W] == 0) continue;
+            const int wall = !MOBILE[kind[j]];
+            if (wall && s->slip) continue;
+            const double muj = wall ? mui : dyn_viscosity(sim, s, j);
+            if (mui + muj <= 0) continue;
+            const double mu = 2 * mui * muj / (mui + muj);
+            const double vj = wall ? 1.0 / delta[i] : 1.0 / delta[j];
+            if (s->morris) { /* 2 V mu x_ij . grad W / (r^2 + eta^2) v_ij (Morris 1997) */
+                double xg = 0;
+                for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
+                const double f = 2.0 * vj * mu * xg / (P[RY_PW_R2] + eta2);
+                for (int d = 0; d < dim; ++d) a[d] += f * (vg[d][i] - vg[d][j]);
+                continue;
+            }
+            double vx = 0;
+            for (int d = 0; d < dim; ++d) vx += (vg[d][i] - vg[d][j]) * P[RY_PW_DX + d];
+            const double f = cvis * vj * mu * vx / (P[RY_PW_R2] + eta2);
+            for (int d = 0; d < dim; ++d) a[d] += f * P[RY_PW_GX + d];
+        }
+        const double inv_rho = 1.0 / (m[i] * delta[i]);
+        for (int d = 0; d < dim; ++d) a[d] = a[d] * inv_rho + sim->gravity[d];
+        if (s->rheo.ob)
+            for (int d = 0; d < dim; ++d) a[d] += s->rheo.acc[3 * i + d];
+    }
+    for (int d = 0; d < 3; ++d) out[d] = a[d];
+}
+
 static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
     const size_t *off = sim->nl.offset;
-    const uint32_t *nb = s->pc.j; /* the pairs within the support */
-    const size_t *end = s->pc.end;
+    const size_t *end = s->pc.end; /* the pairs within the support */
     const uint8_t *kind = ps->kind;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS];
     const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
-    const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h;
     double *delta = s->delta, *acc = s->acc;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
@@ -334,40 +376,15 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
         for (size_t i = 0; i < n; ++i) vol[i] = 1.0 / (MOBILE[kind[i]] ? delta[i] : s->delta0);
         RY_TRY(ry_sph_rheo_rates(&s->rheo, sim, &s->pc, MOBILE, vol, s->slip ? NULL : vg, err));
     }
-    const double cvis = 2.0 * (dim + 2);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        double a[3] = {0, 0, 0};
-        if (MOBILE[kind[i]]) {
-            const double mui = dyn_viscosity(sim, s, i);
-            for (size_t q = off[i]; !s->implicit && q < end[i]; ++q) {
-                const uint32_t j = nb[q];
-                const double *P = cv + q * RY_PAIR_STRIDE;
-                if (P[RY_PW_W] == 0) continue;
-                const int wall = !MOBILE[kind[j]];
-                if (wall && s->slip) continue;
-                const double muj = wall ? mui : dyn_viscosity(sim, s, j);
-                if (mui + muj <= 0) continue;
-                const double mu = 2 * mui * muj / (mui + muj);
-                const double vj = wall ? 1.0 / delta[i] : 1.0 / delta[j];
-                if (s->morris) { /* 2 V mu x_ij . grad W / (r^2 + eta^2) v_ij (Morris 1997) */
-                    double xg = 0;
-                    for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
-                    const double f = 2.0 * vj * mu * xg / (P[RY_PW_R2] + eta2);
-                    for (int d = 0; d < dim; ++d) a[d] += f * (vg[d][i] - vg[d][j]);
-                    continue;
-                }
-                double vx = 0;
-                for (int d = 0; d < dim; ++d) vx += (vg[d][i] - vg[d][j]) * P[RY_PW_DX + d];
-                const double f = cvis * vj * mu * vx / (P[RY_PW_R2] + eta2);
-                for (int d = 0; d < dim; ++d) a[d] += f * P[RY_PW_GX + d];
-            }
-            const double inv_rho = 1.0 / (m[i] * delta[i]);
-            for (int d = 0; d < dim; ++d) a[d] = a[d] * inv_rho + sim->gravity[d];
-            if (s->rheo.ob)
-                for (int d = 0; d < dim; ++d) a[d] += s->rheo.acc[3 * i + d];
-        }
-        for (int d = 0; d < 3; ++d) acc[3 * i + d] = a[d];
+        double *a = acc + 3 * i;
+        if (dim == 3)
+            force_row(sim, s, i, vg, a, 3);
+        else if (dim == 2)
+            force_row(sim, s, i, vg, a, 2);
+        else
+            force_row(sim, s, i, vg, a, dim);
     }
     return RY_OK;
 }
