@@ -272,6 +272,24 @@ static inline int ry_sim_is_halo(const ry_sim *sim, size_t i) {
     return sim->halo && sim->halo[i];
 }
 
+/* Separation x_j - x_i of two particles (minimum image; zero beyond the dimension) and its
+ * squared length. Written out where no side is periodic, so that an inlined caller's dx stays
+ * in registers; the same values either way. */
+static inline double ry_sim_separation(const ry_sim *sim, size_t i, size_t j, double dx[3]) {
+    double *const *x = sim->ps.f + RY_F_X;
+    const int plain = ry_box_plain(&sim->box);
+    if (plain) {
+        dx[0] = x[0][j] - x[0][i];
+        dx[1] = x[1][j] - x[1][i];
+        dx[2] = plain == 3 ? x[2][j] - x[2][i] : 0.0;
+    } else {
+        dx[0] = dx[1] = dx[2] = 0;
+        for (int d = 0; d < sim->dim; ++d) dx[d] = x[d][j] - x[d][i];
+        ry_box_min_image(&sim->box, dx);
+    }
+    return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+}
+
 /* Writes the state at an output time: ry_sim_write_output, or in a distributed run the
  * whole set through the parallel layer. */
 ry_status ry_sim_output(ry_sim *sim, ry_error *err);

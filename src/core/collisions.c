@@ -2,17 +2,14 @@
 #include "ryushi/sim.h"
 
 /* The collision impulse s of fluid particle i from the entries q0..q1-1 of nj (inlined with a
- * literal dim, and plain: no periodic side, so that the separations stay in registers). */
+ * literal dim, so that the sums stay in registers). */
 static inline void collide_row(const ry_sim *sim, size_t i, size_t q0, size_t q1,
-                               const uint32_t *nj, double rc2, double f, double s[3], int dim,
-                               int plain) {
+                               const uint32_t *nj, double rc2, double f, double s[3], int dim) {
     const ry_particles *ps = &sim->ps;
     for (size_t q = q0; q < q1; ++q) {
         const uint32_t j = nj[q];
-        double dx[3] = {0, 0, 0}, r2 = 0;
-        for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
-        if (!plain) ry_box_min_image(&sim->box, dx);
-        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        double dx[3];
+        const double r2 = ry_sim_separation(sim, i, j, dx);
         if (r2 >= rc2 || r2 <= 0) continue;
         double vn = 0;
         for (int d = 0; d < dim; ++d) vn += (ps->f[RY_F_VX + d][j] - ps->f[RY_F_VX + d][i]) * dx[d];
@@ -26,7 +23,7 @@ void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, const 
                    const size_t *row_end, double *dv) {
     if (rc <= 0) return;
     ry_particles *ps = &sim->ps;
-    const int dim = sim->dim, plain = ry_box_plain(&sim->box);
+    const int dim = sim->dim;
     const size_t n = ps->n;
     const double rc2 = rc * rc, f = 0.5 * (1.0 + restitution);
     if (!nj) nj = sim->nl.j;
@@ -36,12 +33,12 @@ void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, const 
         if (ps->kind[i] == RY_KIND_FLUID) {
             const size_t q0 = sim->nl.offset[i];
             const size_t q1 = row_end ? row_end[i] : sim->nl.offset[i + 1];
-            if (plain == 3)
-                collide_row(sim, i, q0, q1, nj, rc2, f, s, 3, 1);
-            else if (plain == 2)
-                collide_row(sim, i, q0, q1, nj, rc2, f, s, 2, 1);
+            if (dim == 3)
+                collide_row(sim, i, q0, q1, nj, rc2, f, s, 3);
+            else if (dim == 2)
+                collide_row(sim, i, q0, q1, nj, rc2, f, s, 2);
             else
-                collide_row(sim, i, q0, q1, nj, rc2, f, s, dim, 0);
+                collide_row(sim, i, q0, q1, nj, rc2, f, s, dim);
         }
         for (int d = 0; d < dim; ++d) dv[dim * i + d] = s[d];
     }

@@ -529,22 +529,6 @@ static const ry_csr_dist *dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d) {
     return ry_particle_dist(&M->pu, d);
 }
 
-/* Separation x_j - x_i (minimum image) and its square length. (With no periodic side written
- * out: the same values, and the caller's dx can stay in registers.) */
-static inline double sep(const ry_sim *sim, size_t i, size_t j, double *dx) {
-    const ry_particles *ps = &sim->ps;
-    const int plain = ry_box_plain(&sim->box);
-    if (plain) {
-        for (int d = 0; d < 2; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
-        dx[2] = plain == 3 ? ps->f[RY_F_Z][j] - ps->f[RY_F_Z][i] : 0.0;
-        return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-    }
-    dx[0] = dx[1] = dx[2] = 0;
-    for (int d = 0; d < sim->dim; ++d) dx[d] = ps->f[RY_F_X + d][j] - ps->f[RY_F_X + d][i];
-    ry_box_min_image(&sim->box, dx);
-    return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-}
-
 /* Squared distances from particle i to the nb particles nj[0..nb-1] into r2 (no periodic
  * sides; call with a literal dim, so that the loop unrolls and vectorises). */
 static inline void row_r2(int dim, const double *const x[3], size_t i, const uint32_t *nj,
@@ -582,7 +566,7 @@ static void thin_normals(ry_sim *sim, mps *M) {
         for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
             const uint32_t j = sim->nl.j[q];
             double dx[3];
-            if (M->thin[j] != M->thin[i] || sep(sim, i, j, dx) > r2max) continue;
+            if (M->thin[j] != M->thin[i] || ry_sim_separation(sim, i, j, dx) > r2max) continue;
             for (int a = 0; a < 3; ++a)
                 for (int b = 0; b < 3; ++b) c[a][b] += dx[a] * dx[b];
         }
@@ -630,7 +614,7 @@ static int thin_between(ry_sim *sim, const mps *M, size_t a, size_t b, int own_b
         if (fabs(od[3]) < off) continue;
         const double *nv = M->tnrm + 3 * k;
         double fd[3];
-        sep(sim, k, far, fd);
+        ry_sim_separation(sim, k, far, fd);
         const double fs = nv[0] * fd[0] + nv[1] * fd[1] + nv[2] * fd[2];
         if (fabs(fs) < off) continue;
         const double *da = own_b ? fd : od, *db = own_b ? od : fd;
@@ -666,7 +650,7 @@ static ry_status thin_cut(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
         for (size_t q = sim->nl.offset[k]; q < sim->nl.offset[k + 1]; ++q) {
             double dx[3];
             const uint32_t j = sim->nl.j[q];
-            cnt[j] += sep(sim, j, k, dx) < r2k;
+            cnt[j] += ry_sim_separation(sim, j, k, dx) < r2k;
         }
     }
     for (size_t i = 0; i < n; ++i) M->tn_off[i + 1] += M->tn_off[i];
@@ -694,7 +678,7 @@ static ry_status thin_cut(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
         for (size_t q = sim->nl.offset[k]; q < sim->nl.offset[k + 1]; ++q) {
             double dx[3];
             const uint32_t j = sim->nl.j[q];
-            if (sep(sim, j, k, dx) < r2k) M->tn_j[--cnt[j]] = (uint32_t)k;
+            if (ry_sim_separation(sim, j, k, dx) < r2k) M->tn_j[--cnt[j]] = (uint32_t)k;
         }
     }
     memmove(M->tn_off, M->tn_off + 1, n * sizeof *M->tn_off);
@@ -706,7 +690,7 @@ static ry_status thin_cut(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
             const uint32_t k = M->tn_j[m];
             const double *nv = M->tnrm + 3 * k;
             double *td = M->tn_d + 4 * (size_t)m;
-            sep(sim, k, i, td);
+            ry_sim_separation(sim, k, i, td);
             td[3] = nv[0] * td[0] + nv[1] * td[1] + nv[2] * td[2];
         }
     /* the rows with a pair that may be cut: a particle with a thin one near, and its
@@ -737,7 +721,7 @@ static ry_status thin_cut(ry_sim *sim, mps *M, int fluid_rows, ry_error *err) {
             /* (the pairs of the list's skin take part in nothing) */
             const int near = M->tn_off[a + 1] > M->tn_off[a] || M->tn_off[b + 1] > M->tn_off[b];
             if (near && (ps->kind[a] != RY_KIND_WALL || ps->kind[b] != RY_KIND_WALL) &&
-                sep(sim, i, j, dx) < rm2)
+                ry_sim_separation(sim, i, j, dx) < rm2)
                 cut = (uint8_t)(thin_between(sim, M, a, b, 0, M->tn_j + M->tn_off[a],
                                              M->tn_d + 4 * (size_t)M->tn_off[a],
                                              M->tn_off[a + 1] - M->tn_off[a]) ||
@@ -874,7 +858,7 @@ static ry_status pairs_build(ry_sim *sim, mps *M, int fluid_rows, ry_error *err)
             {
                 if (periodic) {
                     double dx[3];
-                    for (size_t k = 0; k < nb; ++k) rb[k] = sep(sim, i, nj[k], dx);
+                    for (size_t k = 0; k < nb; ++k) rb[k] = ry_sim_separation(sim, i, nj[k], dx);
                 } else if (dim == 3) {
                     row_r2(3, x, i, nj, nb, rb);
                 } else if (dim == 2) {
@@ -952,12 +936,9 @@ static double divergence_lanes(const ry_sim *sim, const mps *M, size_t i, const 
 static void number_density(ry_sim *sim, mps *M) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    const int dim = sim->dim;
     const double re = M->re_g, reach = M->wall_reach;
     double *nd = ps->f[M->f_nd], *surf = ps->f[M->f_surf];
-    int periodic = 0;
-    for (int d = 0; d < dim; ++d) periodic |= sim->box.periodic[d];
-    const int div = M->gamma < 1.0, lanes = div && dim == 3 && !periodic;
+    const int div = M->gamma < 1.0, lanes = div && ry_box_plain(&sim->box) == 3;
     /* (lanes) the velocity each particle brings to the divergence, in M->b, which the
      * pressure equation fills only later */
     double *u[3] = {M->b, M->b + n, M->b + 2 * n};
@@ -1078,7 +1059,7 @@ static int corrected_gradient(const ry_sim *sim, const mps *M, size_t i, int flu
         const uint32_t j = M->pj[q];
         if (fluid_only && sim->ps.kind[j] != RY_KIND_FLUID) continue;
         double dx[3];
-        const double r2 = sep(sim, i, j, dx);
+        const double r2 = ry_sim_separation(sim, i, j, dx);
         if (r2 <= 0) continue;
         const double wr = ry_mps_weight_tamai(M->pr[q], M->re_g) / r2;
         for (int a = 0; a < dim; ++a)
@@ -1389,7 +1370,7 @@ static double divergence(const ry_sim *sim, const mps *M, size_t i) {
     for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
         const uint32_t j = M->pj[q];
         double dx[3];
-        const double r2 = sep(sim, i, j, dx);
+        const double r2 = ry_sim_separation(sim, i, j, dx);
         if (r2 <= 0) continue;
         const double *const *u = ps->kind[j] == RY_KIND_FLUID ? us : uv;
         double du = 0;
@@ -1434,7 +1415,7 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
             const uint32_t j = M->pj[q];
             if (ps->kind[j] != RY_KIND_FLUID) continue;
             double dx[3];
-            sep(sim, i, j, dx);
+            ry_sim_separation(sim, i, j, dx);
             const double w = ry_mps_weight_tamai(M->pr[q], re);
             double gd = 0; /* g . (x_i - x_j) = -g . dx */
             for (int d = 0; d < sim->dim; ++d) gd -= sim->gravity[d] * dx[d];
@@ -1479,7 +1460,7 @@ static void surface_head(ry_sim *sim, mps *M) {
         double in[3] = {0, 0, 0}, nin = 0, gin = 0;
         for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
             double dx[3];
-            if (sep(sim, i, M->pj[q], dx) <= 0) continue;
+            if (ry_sim_separation(sim, i, M->pj[q], dx) <= 0) continue;
             const double w = ry_mps_weight_tamai(M->pr[q], M->re_g);
             for (int a = 0; a < dim; ++a) in[a] += w * dx[a];
         }
@@ -1639,9 +1620,8 @@ static void correct(ry_sim *sim, mps *M, double dt) {
     const double re = M->re_g;
     const double *p = ps->f[RY_F_P];
     double *gx = M->xs; /* dim per particle */
-    int periodic = 0;
-    for (int d = 0; d < dim; ++d) periodic |= sim->box.periodic[d];
-    const int lanes = dim == 3 && !periodic; /* the pair terms' first half as a vector loop */
+    /* the pair terms' first half as a vector loop (3D, no periodic side) */
+    const int lanes = ry_box_plain(&sim->box) == 3;
     size_t rowmax = 0;
     for (size_t i = 0; lanes && i < n; ++i)
         if (M->gend[i] - sim->nl.offset[i] > rowmax) rowmax = M->gend[i] - sim->nl.offset[i];
@@ -1668,7 +1648,7 @@ static void correct(ry_sim *sim, mps *M, double dt) {
                     double pj = p[j];
                     if (thin_normal(M, j)) { /* the side of a thin wall needs the separation */
                         double dx[3];
-                        sep(sim, i, j, dx);
+                        ry_sim_separation(sim, i, j, dx);
                         pj = grad_pressure(M, p, j, dx);
                     }
                     pmin = fmin(pmin, pj);
@@ -1703,7 +1683,7 @@ static void correct(ry_sim *sim, mps *M, double dt) {
                 for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
                     const uint32_t j = M->pj[q];
                     double dx[3];
-                    const double r2 = sep(sim, i, j, dx);
+                    const double r2 = ry_sim_separation(sim, i, j, dx);
                     if (M->role[j] == ROLE_DUMMY || r2 <= 0) continue;
                     const double w = ry_mps_weight_tamai(M->pr[q], re), wr = w / r2;
                     const double pj = grad_pressure(M, p, j, dx);

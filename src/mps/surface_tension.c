@@ -181,18 +181,6 @@ double ry_st_capillary_dt(const ry_surface_tension *st, const ry_sim *sim) {
     return sqrt(rho * st->l0 * st->l0 * st->l0 / (2 * RY_PI * st->sigma));
 }
 
-/* Separation x_j - x_i (minimum image) into dx; returns r^2. Inline: the pair loops call it
- * for every listed pair. */
-static inline double pair_sep(const ry_sim *sim, size_t i, uint32_t j, double dx[3]) {
-    double r2 = 0;
-    const int dim = sim->dim;
-    dx[0] = dx[1] = dx[2] = 0;
-    for (int d = 0; d < dim; ++d) dx[d] = sim->ps.f[RY_F_X + d][j] - sim->ps.f[RY_F_X + d][i];
-    ry_box_min_image(&sim->box, dx);
-    for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
-    return r2;
-}
-
 /* The pair (i, j)'s coefficient in st_sums, relative to C for the potential model; for CSF
  * whether j counts in the colour function (1 or 0). Inflow buffer particles are fluid about to
  * enter; walls count in CSF as liquid where a contact angle is set, and attract in the
@@ -231,13 +219,12 @@ static void thin_images(const ry_surface_tension *st, int dim, uint32_t j, const
 /* Inward sum of particle i over the fluid within re: sum_j w (x_j - x_i)/r (CSF; w the Tamai
  * weight) or the potential force sum_j f(r) (x_j - x_i)/r, with the images of thin walls
  * (thin_images); *count receives the neighbours. */
-static inline void st_sums_k(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
-                             double *count, int plain) {
+static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
+                    double *count) {
     const ry_particles *ps = &sim->ps;
     const int csf = st->model == RY_ST_CSF;
     const int images = !csf && st->thin_normal && st->thin_layers > 1;
     const double re = st->re, re2 = re * re;
-    const double *X = ps->f[RY_F_X], *Y = ps->f[RY_F_Y], *Z = ps->f[RY_F_Z];
     /* the scheme's pairs (their distances known, the cut ones and most beyond re left out),
      * or the neighbour list */
     const int own = st->pair_j != NULL;
@@ -247,19 +234,8 @@ static inline void st_sums_k(const ry_surface_tension *st, const ry_sim *sim, si
     for (size_t q = q0; q < q1; ++q) {
         if (!own && st->cut && st->cut[q]) continue;
         const uint32_t j = js[q];
-        double dx0, dx1, dx2, r, r2;
-        if (plain) { /* (the loop's 0 + ... adds nothing; in 2D neither does dx2) */
-            dx0 = X[j] - X[i];
-            dx1 = Y[j] - Y[i];
-            dx2 = plain == 3 ? Z[j] - Z[i] : 0.0;
-            r2 = plain == 3 ? dx0 * dx0 + dx1 * dx1 + dx2 * dx2 : dx0 * dx0 + dx1 * dx1;
-        } else {
-            double dx[3];
-            r2 = pair_sep(sim, i, j, dx);
-            dx0 = dx[0];
-            dx1 = dx[1];
-            dx2 = dx[2];
-        }
+        double dx[3], r;
+        const double r2 = ry_sim_separation(sim, i, j, dx);
         if (own) {
             r = st->pair_r[q];
             if (r >= re || r <= 0) continue;
@@ -272,32 +248,15 @@ static inline void st_sums_k(const ry_surface_tension *st, const ry_sim *sim, si
         const double f = c * (csf ? ry_mps_weight_tamai(r, re) : ry_st_potential_f(r, st->l0, re));
         const double g = f / r;
         cnt += csf ? f : 1.0;
-        s0 += g * dx0; /* dx is zero beyond the dimension */
-        s1 += g * dx1;
-        s2 += g * dx2;
-        if (images && ps->kind[j] == RY_KIND_WALL) {
-            const double dx[3] = {dx0, dx1, dx2};
-            thin_images(st, sim->dim, j, dx, c, im);
-        }
+        s0 += g * dx[0]; /* dx is zero beyond the dimension */
+        s1 += g * dx[1];
+        s2 += g * dx[2];
+        if (images && ps->kind[j] == RY_KIND_WALL) thin_images(st, sim->dim, j, dx, c, im);
     }
     s[0] = s0 + im[0];
     s[1] = s1 + im[1];
     s[2] = s2 + im[2];
     *count = cnt;
-}
-
-static void st_sums(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *s,
-                    double *count) {
-    switch (ry_box_plain(&sim->box)) {
-    case 3:
-        st_sums_k(st, sim, i, s, count, 3);
-        break;
-    case 2:
-        st_sums_k(st, sim, i, s, count, 2);
-        break;
-    default:
-        st_sums_k(st, sim, i, s, count, 0);
-    }
 }
 
 /* Wetting (CSF): the wall normal n_w at fluid particle i, -sum_walls w x_ij / r normalised
@@ -318,7 +277,7 @@ static int contact_frame(const ry_surface_tension *st, const ry_sim *sim, size_t
         const uint32_t j = sim->nl.j[q];
         if (ps->kind[j] != RY_KIND_WALL) continue;
         double dx[3];
-        const double r2 = pair_sep(sim, i, j, dx);
+        const double r2 = ry_sim_separation(sim, i, j, dx);
         if (r2 >= re2 || r2 <= 0) continue;
         *near |= r2 < reach2;
         const double w = ry_mps_weight_tamai(sqrt(r2), st->re) / sqrt(r2);
@@ -364,7 +323,7 @@ static void wetted_colour(const ry_surface_tension *st, const ry_sim *sim, size_
         const uint32_t j = sim->nl.j[q];
         if (ps->kind[j] != RY_KIND_WALL) continue;
         double dx[3], out = 0;
-        const double r2 = pair_sep(sim, i, j, dx);
+        const double r2 = ry_sim_separation(sim, i, j, dx);
         if (r2 >= re2 || r2 <= 0) continue;
         for (int d = 0; d < dim; ++d) out += dx[d] * nth[d];
         if (out <= 0.5 * st->l0) continue;
@@ -439,7 +398,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
             const uint32_t j = sim->nl.j[q];
             double dx[3];
             if (ps->kind[j] != RY_KIND_FLUID) continue;
-            const double r2 = pair_sep(sim, i, j, dx);
+            const double r2 = ry_sim_separation(sim, i, j, dx);
             if (r2 >= re2 || r2 <= 0) continue;
             const double w = ry_mps_weight_tamai(sqrt(r2), st->re);
             for (int d = 0; d < dim; ++d) g[d] += w * gs[3 * j + d];
@@ -544,7 +503,7 @@ void ry_st_laplace_pressure(const ry_surface_tension *st, const ry_sim *sim, con
                 const uint32_t j = sim->nl.j[q];
                 if (tag[j] != surface || ps->kind[j] != RY_KIND_FLUID) continue;
                 double dx[3];
-                const double r2 = pair_sep(sim, i, j, dx);
+                const double r2 = ry_sim_separation(sim, i, j, dx);
                 if (r2 >= radius * radius || r2 <= 0) continue;
                 const double w = ry_mps_weight_tamai(sqrt(r2), radius);
                 ks += w * pd[j];

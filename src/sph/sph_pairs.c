@@ -5,30 +5,24 @@
 #include <stdlib.h>
 
 /* Row i of the cache from the neighbour list's row (entries off[i]..off[i + 1]); in holds room
- * for the row. Inlined with a literal dim where no side is periodic, so that the separations
- * stay in registers; the same values either way. */
-static inline void cache_row(ry_pair_cache *pc, const ry_sim *sim, const double *const x[3],
-                             size_t i, uint32_t *in, int dim, int periodic) {
+ * for the row. */
+static void cache_row(ry_pair_cache *pc, const ry_sim *sim, size_t i, uint32_t *in) {
     const ry_kernel *k = &sim->kernel;
     const double rad2 = k->radius * k->radius;
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
     size_t c = 0;
     for (size_t q = off[i]; q < off[i + 1]; ++q) {
-        double dx[3] = {0, 0, 0}, r2 = 0;
-        for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][nb[q]];
-        if (periodic) ry_box_min_image(&sim->box, dx);
-        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        double dx[3]; /* x_i - x_j */
+        const double r2 = ry_sim_separation(sim, nb[q], i, dx);
         in[c] = (uint32_t)(q - off[i]);
         c += (r2 < rad2) & (r2 > 0) & !(pc->cut && pc->cut[q]);
     }
     for (size_t e = 0; e < c; ++e) {
         const size_t q = off[i] + in[e];
         const uint32_t j = nb[q];
-        double dx[3] = {0, 0, 0}, r2 = 0;
-        for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
-        if (periodic) ry_box_min_image(&sim->box, dx);
-        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        double dx[3];
+        const double r2 = ry_sim_separation(sim, j, i, dx);
         const double r = sqrt(r2), f = ry_kernel_dwdr(k, r) / r;
         double *P = pc->v + (off[i] + e) * RY_PAIR_STRIDE; /* zeros beyond the dimension */
         P[RY_PW_W] = ry_kernel_w(k, r);
@@ -62,9 +56,6 @@ ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int nee
         pc->end = e;
         pc->cap_n = cap;
     }
-    const int dim = sim->dim, plain = ry_box_plain(&sim->box);
-    const double *x[3];
-    ry_particles_coords(ps, x);
     const size_t *off = sim->nl.offset;
     size_t rowmax = 0;
     for (size_t i = 0; i < n; ++i)
@@ -78,14 +69,10 @@ ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int nee
         ok = in != NULL;
 #pragma omp for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
-            if (!ok || !need[ps->kind[i]])
-                pc->end[i] = off[i];
-            else if (plain == 3)
-                cache_row(pc, sim, x, i, in, 3, 0);
-            else if (plain == 2)
-                cache_row(pc, sim, x, i, in, 2, 0);
+            if (ok && need[ps->kind[i]])
+                cache_row(pc, sim, i, in);
             else
-                cache_row(pc, sim, x, i, in, dim, !plain);
+                pc->end[i] = off[i];
         }
         free(in);
     }
