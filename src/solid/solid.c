@@ -520,56 +520,53 @@ RY_SOLID_INLINE void strain_gradient(ry_sim *sim, solid *s, size_t i, const doub
 RY_SOLID_INLINE void stresses_dim(ry_sim *sim, solid *s, size_t i, const int dim) {
     ry_particles *ps = &sim->ps;
     const double *x[3] = {ps->f[RY_F_X], ps->f[RY_F_Y], dim > 2 ? ps->f[RY_F_Z] : NULL};
-    {
-        double F[9] = {0}, E[9] = {0}, S[9] = {0}, P[9] = {0};
-        for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
-            const size_t j = s->nl.j[q];
-            const double *g = s->G + q * (size_t)dim;
-            for (int a = 0; a < dim; ++a) {
-                const double dxa = x[a][j] - x[a][i];
-                for (int b = 0; b < dim; ++b) F[3 * a + b] += dxa * g[b];
-            }
+    double F[9] = {0}, E[9] = {0}, S[9] = {0}, P[9] = {0};
+    for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
+        const size_t j = s->nl.j[q];
+        const double *g = s->G + q * (size_t)dim;
+        for (int a = 0; a < dim; ++a) {
+            const double dxa = x[a][j] - x[a][i];
+            for (int b = 0; b < dim; ++b) F[3 * a + b] += dxa * g[b];
         }
-        for (int a = 0; a < dim; ++a)
-            for (int b = 0; b < dim; ++b) {
-                double t = 0;
-                for (int c = 0; c < dim; ++c) t += F[3 * c + a] * F[3 * c + b];
-                E[3 * a + b] = 0.5 * (t - (a == b));
-            }
-        const int m = ps->material[i];
-        double tr = 0, psi = 0;
-        for (int a = 0; a < dim; ++a) tr += E[4 * a];
-        for (int a = 0; a < dim; ++a)
-            for (int b = 0; b < dim; ++b) {
-                S[3 * a + b] = 2 * s->mu[m] * E[3 * a + b] + (a == b ? s->lam[m] * tr : 0.0);
-                psi += 0.5 * S[3 * a + b] * E[3 * a + b];
-            }
-        for (int a = 0; a < dim; ++a)
-            for (int b = 0; b < dim; ++b) {
-                double t = 0;
-                for (int c = 0; c < dim; ++c) t += F[3 * a + c] * S[3 * c + b];
-                P[3 * a + b] = t;
-            }
-        const int no_energy = s->clamp == CLAMP_FACE && ps->kind[i] != RY_KIND_SOLID;
-        if (no_energy) {
-            memset(P, 0, sizeof P);
-            psi = 0;
-        }
-        memcpy(s->F + 9 * i, F, sizeof F);
-        memcpy(s->A + 9 * i, P, sizeof P);
-        if (s->H && !no_energy) strain_gradient(sim, s, i, F, &psi, dim);
-        /* Cauchy stress sigma = P F^T / J for output: pressure -tr(sigma)/dim, density rho0/J */
-        double J = dim == 2
-                       ? F[0] * F[4] - F[1] * F[3]
-                       : F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-                             F[2] * (F[3] * F[7] - F[4] * F[6]);
-        double trs = 0;
-        for (int a = 0; a < dim; ++a)
-            for (int c = 0; c < dim; ++c) trs += P[3 * a + c] * F[3 * a + c];
-        ps->f[RY_F_P][i] = J > 0 ? -trs / (J * dim) : 0.0;
-        ps->f[RY_F_RHO][i] = sim->mat[m].density / (J > 0 ? J : 1.0);
-        ps->f[s->f_psi][i] = psi;
     }
+    for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) {
+            double t = 0;
+            for (int c = 0; c < dim; ++c) t += F[3 * c + a] * F[3 * c + b];
+            E[3 * a + b] = 0.5 * (t - (a == b));
+        }
+    const int m = ps->material[i];
+    double tr = 0, psi = 0;
+    for (int a = 0; a < dim; ++a) tr += E[4 * a];
+    for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) {
+            S[3 * a + b] = 2 * s->mu[m] * E[3 * a + b] + (a == b ? s->lam[m] * tr : 0.0);
+            psi += 0.5 * S[3 * a + b] * E[3 * a + b];
+        }
+    for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) {
+            double t = 0;
+            for (int c = 0; c < dim; ++c) t += F[3 * a + c] * S[3 * c + b];
+            P[3 * a + b] = t;
+        }
+    const int no_energy = s->clamp == CLAMP_FACE && ps->kind[i] != RY_KIND_SOLID;
+    if (no_energy) {
+        memset(P, 0, sizeof P);
+        psi = 0;
+    }
+    memcpy(s->F + 9 * i, F, sizeof F);
+    memcpy(s->A + 9 * i, P, sizeof P);
+    if (s->H && !no_energy) strain_gradient(sim, s, i, F, &psi, dim);
+    /* Cauchy stress sigma = P F^T / J for output: pressure -tr(sigma)/dim, density rho0/J */
+    double J = dim == 2 ? F[0] * F[4] - F[1] * F[3]
+                        : F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                              F[2] * (F[3] * F[7] - F[4] * F[6]);
+    double trs = 0;
+    for (int a = 0; a < dim; ++a)
+        for (int c = 0; c < dim; ++c) trs += P[3 * a + c] * F[3 * a + c];
+    ps->f[RY_F_P][i] = J > 0 ? -trs / (J * dim) : 0.0;
+    ps->f[RY_F_RHO][i] = sim->mat[m].density / (J > 0 ? J : 1.0);
+    ps->f[s->f_psi][i] = psi;
 }
 
 /* Pass 2: the acceleration of particle i (zero where it is not free; inlined as
@@ -583,50 +580,47 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) 
         ry_solid_accelerate(sim, s, i, NULL, dim);
         return;
     }
-    {
-        double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
-        const double *Ai = s->A + 9 * i, *Fi = s->F + 9 * i;
-        const double vi = s->vol[i];
-        for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
-            const size_t j = s->nl.j[q];
-            const double *gij = s->G + q * (size_t)dim, *gji = s->G + s->rev[q] * (size_t)dim;
-            const double *Aj = s->A + 9 * j;
-            const double vj = s->vol[j];
+    double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
+    const double *Ai = s->A + 9 * i, *Fi = s->F + 9 * i;
+    const double vi = s->vol[i];
+    for (size_t q = s->nl.offset[i]; q < s->nl.offset[i + 1]; ++q) {
+        const size_t j = s->nl.j[q];
+        const double *gij = s->G + q * (size_t)dim, *gji = s->G + s->rev[q] * (size_t)dim;
+        const double *Aj = s->A + 9 * j;
+        const double vj = s->vol[j];
+        for (int a = 0; a < dim; ++a) {
+            double t = 0;
+            for (int b = 0; b < dim; ++b)
+                t += vi * Ai[3 * a + b] * gij[b] - vj * Aj[3 * a + b] * gji[b];
+            f[a] += t;
+        }
+        if (s->H) { /* strain-gradient stresses through the second-derivative weights */
+            const double *hij = s->H + q * (size_t)(dim * dim);
+            const double *hji = s->H + s->rev[q] * (size_t)(dim * dim);
+            const double *Qi = s->Q + 27 * i, *Qj = s->Q + 27 * j;
             for (int a = 0; a < dim; ++a) {
                 double t = 0;
-                for (int b = 0; b < dim; ++b)
-                    t += vi * Ai[3 * a + b] * gij[b] - vj * Aj[3 * a + b] * gji[b];
+                for (int k = 0; k < dim; ++k)
+                    for (int b = 0; b < dim; ++b)
+                        t += vi * Qi[9 * k + 3 * a + b] * hij[dim * k + b] -
+                             vj * Qj[9 * k + 3 * a + b] * hji[dim * k + b];
                 f[a] += t;
             }
-            if (s->H) { /* strain-gradient stresses through the second-derivative weights */
-                const double *hij = s->H + q * (size_t)(dim * dim);
-                const double *hji = s->H + s->rev[q] * (size_t)(dim * dim);
-                const double *Qi = s->Q + 27 * i, *Qj = s->Q + 27 * j;
-                for (int a = 0; a < dim; ++a) {
-                    double t = 0;
-                    for (int k = 0; k < dim; ++k)
-                        for (int b = 0; b < dim; ++b)
-                            t += vi * Qi[9 * k + 3 * a + b] * hij[dim * k + b] -
-                                 vj * Qj[9 * k + 3 * a + b] * hji[dim * k + b];
-                    f[a] += t;
-                }
-            }
-            if (hg > 0) {
-                /* e_ij = x_j - x_i - (F_i + F_j)/2 (X_j - X_i) */
-                const double *Fj = s->F + 9 * j, cij = s->hgc[q];
-                double Xji[3];
-                for (int a = 0; a < dim; ++a) Xji[a] = X[a][j] - X[a][i];
-                for (int a = 0; a < dim; ++a) {
-                    double e = x[a][j] - x[a][i];
-                    for (int b = 0; b < dim; ++b)
-                        e -= 0.5 * (Fi[3 * a + b] + Fj[3 * a + b]) * Xji[b];
-                    fh[a] += cij * e;
-                }
+        }
+        if (hg > 0) {
+            /* e_ij = x_j - x_i - (F_i + F_j)/2 (X_j - X_i) */
+            const double *Fj = s->F + 9 * j, cij = s->hgc[q];
+            double Xji[3];
+            for (int a = 0; a < dim; ++a) Xji[a] = X[a][j] - X[a][i];
+            for (int a = 0; a < dim; ++a) {
+                double e = x[a][j] - x[a][i];
+                for (int b = 0; b < dim; ++b) e -= 0.5 * (Fi[3 * a + b] + Fj[3 * a + b]) * Xji[b];
+                fh[a] += cij * e;
             }
         }
-        for (int a = 0; a < dim; ++a) f[a] += vi * hg * fh[a];
-        ry_solid_accelerate(sim, s, i, f, dim);
     }
+    for (int a = 0; a < dim; ++a) f[a] += vi * hg * fh[a];
+    ry_solid_accelerate(sim, s, i, f, dim);
 }
 
 void ry_solid_accelerate(ry_sim *sim, solid *s, size_t i, const double *f, int dim) {

@@ -163,74 +163,72 @@ RY_SOLID_INLINE void rates_dim(ry_sim *sim, solid *s, size_t i, double dt, const
     const double *rho = ps->f[RY_F_RHO], *mass = ps->f[RY_F_MASS];
     double *drho = ps->f[RY_F_DRHO];
     const int corr = s->correction != CORR_NONE, quad = s->correction == CORR_QUADRATIC;
-    {
-        double B[9] = {0}, Lv[9] = {0}, L[9] = {0}, gv[9] = {0};
-        const size_t o = sim->nl.offset[i], nn = sim->nl.offset[i + 1] - o;
-        if (quad) {
-            /* weights of the quadratic fit: grad v = sum_j (v_j - v_i) (x) G_ij */
-            ry_error e1;
-            double *Gi = s->G + (size_t)dim * o;
-            if (ry_corr_quadratic_gradient(k, xi_of(x, i, dim).p, nn, sim->nl.j + o, x, s->vol, Gi,
-                                           NULL, &e1) != RY_OK)
-                memset(Gi, 0, nn * (size_t)dim * sizeof *Gi);
-            for (size_t q = o; q < o + nn; ++q) {
-                const size_t j = sim->nl.j[q];
-                for (int a = 0; a < dim; ++a)
-                    for (int b = 0; b < dim; ++b)
-                        Lv[3 * a + b] += (v[a][j] - v[a][i]) * Gi[(q - o) * (size_t)dim + b];
-            }
-        }
-        for (size_t q = o; q < o + nn && !quad; ++q) {
-            const size_t j = sim->nl.j[q];
-            double d[3], r2 = 0;
-            for (int a = 0; a < dim; ++a) {
-                d[a] = x[a][j] - x[a][i];
-                r2 += d[a] * d[a];
-            }
-            if (r2 >= r2max || r2 == 0) continue;
-            const double r = sqrt(r2), f = -ry_kernel_dwdr(k, r) / r, vj = mass[j] / rho[j];
-            double g[3]; /* V_j grad_i W_ij */
-            for (int a = 0; a < dim; ++a) g[a] = vj * f * d[a];
-            for (int a = 0; a < dim; ++a) {
-                const double dva = v[a][j] - v[a][i];
-                for (int b = 0; b < dim; ++b) {
-                    B[3 * a + b] += g[a] * d[b];
-                    Lv[3 * a + b] += dva * g[b];
-                }
-            }
-        }
+    double B[9] = {0}, Lv[9] = {0}, L[9] = {0}, gv[9] = {0};
+    const size_t o = sim->nl.offset[i], nn = sim->nl.offset[i + 1] - o;
+    if (quad) {
+        /* weights of the quadratic fit: grad v = sum_j (v_j - v_i) (x) G_ij */
         ry_error e1;
-        if (!corr || quad || ry_mat_inverse(dim, B, L, &e1) != RY_OK) {
-            memset(L, 0, sizeof L);
-            for (int a = 0; a < dim; ++a) L[4 * a] = 1;
+        double *Gi = s->G + (size_t)dim * o;
+        if (ry_corr_quadratic_gradient(k, xi_of(x, i, dim).p, nn, sim->nl.j + o, x, s->vol, Gi,
+                                       NULL, &e1) != RY_OK)
+            memset(Gi, 0, nn * (size_t)dim * sizeof *Gi);
+        for (size_t q = o; q < o + nn; ++q) {
+            const size_t j = sim->nl.j[q];
+            for (int a = 0; a < dim; ++a)
+                for (int b = 0; b < dim; ++b)
+                    Lv[3 * a + b] += (v[a][j] - v[a][i]) * Gi[(q - o) * (size_t)dim + b];
         }
-        memcpy(s->Lc + 9 * i, L, sizeof L);
-        for (int a = 0; a < dim; ++a) /* grad v = Lv L^T */
-            for (int b = 0; b < dim; ++b)
-                for (int c = 0; c < dim; ++c) gv[3 * a + b] += Lv[3 * a + c] * L[3 * b + c];
-        double tr = 0;
-        for (int a = 0; a < dim; ++a) tr += gv[4 * a];
-        drho[i] = -rho[i] * tr;
-        if (dt == 0) return;
-        double S[9] = {0}, Sd[9] = {0}; /* (Sd: read only where written) */
-        for (int c = 0; c < 6; ++c)
-            if (s->f_S[c] >= 0)
-                S[3 * comp_a[c] + comp_b[c]] = S[3 * comp_b[c] + comp_a[c]] = ps->f[s->f_S[c]][i];
-        const double G = s->mu[ps->material[i]];
-        for (int a = 0; a < dim; ++a)
-            for (int b = 0; b < dim; ++b) {
-                const double e = 0.5 * (gv[3 * a + b] + gv[3 * b + a]) - (a == b ? tr / dim : 0.0);
-                double rot = 0; /* S Omega^T + Omega S */
-                for (int c = 0; c < dim; ++c) {
-                    const double om_bc = 0.5 * (gv[3 * b + c] - gv[3 * c + b]);
-                    const double om_ac = 0.5 * (gv[3 * a + c] - gv[3 * c + a]);
-                    rot += S[3 * a + c] * om_bc + om_ac * S[3 * c + b];
-                }
-                Sd[3 * a + b] = 2 * G * e + rot;
-            }
-        for (int c = 0; c < 6; ++c)
-            if (s->f_S[c] >= 0) ps->f[s->f_S[c]][i] += dt * Sd[3 * comp_a[c] + comp_b[c]];
     }
+    for (size_t q = o; q < o + nn && !quad; ++q) {
+        const size_t j = sim->nl.j[q];
+        double d[3], r2 = 0;
+        for (int a = 0; a < dim; ++a) {
+            d[a] = x[a][j] - x[a][i];
+            r2 += d[a] * d[a];
+        }
+        if (r2 >= r2max || r2 == 0) continue;
+        const double r = sqrt(r2), f = -ry_kernel_dwdr(k, r) / r, vj = mass[j] / rho[j];
+        double g[3]; /* V_j grad_i W_ij */
+        for (int a = 0; a < dim; ++a) g[a] = vj * f * d[a];
+        for (int a = 0; a < dim; ++a) {
+            const double dva = v[a][j] - v[a][i];
+            for (int b = 0; b < dim; ++b) {
+                B[3 * a + b] += g[a] * d[b];
+                Lv[3 * a + b] += dva * g[b];
+            }
+        }
+    }
+    ry_error e1;
+    if (!corr || quad || ry_mat_inverse(dim, B, L, &e1) != RY_OK) {
+        memset(L, 0, sizeof L);
+        for (int a = 0; a < dim; ++a) L[4 * a] = 1;
+    }
+    memcpy(s->Lc + 9 * i, L, sizeof L);
+    for (int a = 0; a < dim; ++a) /* grad v = Lv L^T */
+        for (int b = 0; b < dim; ++b)
+            for (int c = 0; c < dim; ++c) gv[3 * a + b] += Lv[3 * a + c] * L[3 * b + c];
+    double tr = 0;
+    for (int a = 0; a < dim; ++a) tr += gv[4 * a];
+    drho[i] = -rho[i] * tr;
+    if (dt == 0) return;
+    double S[9] = {0}, Sd[9] = {0}; /* (Sd: read only where written) */
+    for (int c = 0; c < 6; ++c)
+        if (s->f_S[c] >= 0)
+            S[3 * comp_a[c] + comp_b[c]] = S[3 * comp_b[c] + comp_a[c]] = ps->f[s->f_S[c]][i];
+    const double G = s->mu[ps->material[i]];
+    for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) {
+            const double e = 0.5 * (gv[3 * a + b] + gv[3 * b + a]) - (a == b ? tr / dim : 0.0);
+            double rot = 0; /* S Omega^T + Omega S */
+            for (int c = 0; c < dim; ++c) {
+                const double om_bc = 0.5 * (gv[3 * b + c] - gv[3 * c + b]);
+                const double om_ac = 0.5 * (gv[3 * a + c] - gv[3 * c + a]);
+                rot += S[3 * a + c] * om_bc + om_ac * S[3 * c + b];
+            }
+            Sd[3 * a + b] = 2 * G * e + rot;
+        }
+    for (int c = 0; c < 6; ++c)
+        if (s->f_S[c] >= 0) ps->f[s->f_S[c]][i] += dt * Sd[3 * comp_a[c] + comp_b[c]];
 }
 
 /* Density advanced by dt; pressure, stress, artificial stress and stored energy density. */
@@ -277,67 +275,65 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) 
     const double *rho = ps->f[RY_F_RHO], *mass = ps->f[RY_F_MASS];
     const double iwdx = 1.0 / ry_kernel_w(k, sim->dx), eps = s->as_eps, expo = s->as_n;
     const int quad = s->correction == CORR_QUADRATIC, face = s->clamp == CLAMP_FACE;
-    {
-        if (ps->kind[i] != RY_KIND_SOLID) {
-            ry_solid_accelerate(sim, s, i, NULL, dim);
-            return;
-        }
-        const double *si = s->sig + 9 * i, *Li = s->Lc + 9 * i, *Ri = s->Ras + 9 * i;
-        const double vi = mass[i] / rho[i];
-        double f[3] = {0, 0, 0};
-        for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
-            const size_t j = sim->nl.j[q];
-            double d[3], r2 = 0, vd = 0;
-            for (int a = 0; a < dim; ++a) {
-                d[a] = x[a][j] - x[a][i];
-                r2 += d[a] * d[a];
-                vd += (v[a][j] - v[a][i]) * d[a]; /* v_ij . x_ij */
-            }
-            if (r2 >= r2max || r2 == 0) continue;
-            const double r = sqrt(r2), fw = -ry_kernel_dwdr(k, r) / r;
-            double g[3]; /* grad_i W_ij */
-            for (int a = 0; a < dim; ++a) g[a] = fw * d[a];
-            const double *sj = s->sig + 9 * j, *Lj = s->Lc + 9 * j, *Rj = s->Ras + 9 * j;
-            const double vj = mass[j] / rho[j], mm = mass[i] * mass[j];
-            double wi[3] = {0, 0, 0}, wj[3] = {0, 0, 0}; /* force: sigma_i wi + sigma_j wj */
-            if (quad) {                                  /* V_i G_ij - V_j G_ji */
-                const double *gij = s->G + q * (size_t)dim, *gji = s->G + s->rev[q] * (size_t)dim;
-                for (int a = 0; a < dim; ++a) {
-                    wi[a] = vi * gij[a];
-                    wj[a] = -vj * gji[a];
-                }
-            } else { /* V_i V_j L grad W_ij */
-                for (int a = 0; a < dim; ++a)
-                    for (int b = 0; b < dim; ++b) {
-                        wi[a] += vi * vj * Li[3 * a + b] * g[b];
-                        wj[a] += vi * vj * Lj[3 * a + b] * g[b];
-                    }
-            }
-            double fn = 0, pi = 0;
-            if (face && ps->kind[j] != RY_KIND_SOLID) { /* the clamp face holds no stress */
-                for (int a = 0; a < dim; ++a)
-                    for (int b = 0; b < dim; ++b) f[a] += si[3 * a + b] * wi[b];
-                continue;
-            }
-            if (eps > 0) {
-                const double w = ry_kernel_w(k, r) * iwdx;
-                fn = expo == 4.0 ? (w * w) * (w * w) : pow(w, expo);
-            }
-            if (vd < 0) {
-                const double mu = h * vd / (r2 + 0.01 * h * h);
-                pi = (-s->av_alpha * c * mu + s->av_beta * mu * mu) / (0.5 * (rho[i] + rho[j]));
-            }
-            for (int a = 0; a < dim; ++a) {
-                double t = 0, u = 0;
-                for (int b = 0; b < dim; ++b) {
-                    t += si[3 * a + b] * wi[b] + sj[3 * a + b] * wj[b];
-                    u += (Ri[3 * a + b] + Rj[3 * a + b]) * g[b];
-                }
-                f[a] += t + mm * (fn * u - pi * g[a]);
-            }
-        }
-        ry_solid_accelerate(sim, s, i, f, dim);
+    if (ps->kind[i] != RY_KIND_SOLID) {
+        ry_solid_accelerate(sim, s, i, NULL, dim);
+        return;
     }
+    const double *si = s->sig + 9 * i, *Li = s->Lc + 9 * i, *Ri = s->Ras + 9 * i;
+    const double vi = mass[i] / rho[i];
+    double f[3] = {0, 0, 0};
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        const size_t j = sim->nl.j[q];
+        double d[3], r2 = 0, vd = 0;
+        for (int a = 0; a < dim; ++a) {
+            d[a] = x[a][j] - x[a][i];
+            r2 += d[a] * d[a];
+            vd += (v[a][j] - v[a][i]) * d[a]; /* v_ij . x_ij */
+        }
+        if (r2 >= r2max || r2 == 0) continue;
+        const double r = sqrt(r2), fw = -ry_kernel_dwdr(k, r) / r;
+        double g[3]; /* grad_i W_ij */
+        for (int a = 0; a < dim; ++a) g[a] = fw * d[a];
+        const double *sj = s->sig + 9 * j, *Lj = s->Lc + 9 * j, *Rj = s->Ras + 9 * j;
+        const double vj = mass[j] / rho[j], mm = mass[i] * mass[j];
+        double wi[3] = {0, 0, 0}, wj[3] = {0, 0, 0}; /* force: sigma_i wi + sigma_j wj */
+        if (quad) {                                  /* V_i G_ij - V_j G_ji */
+            const double *gij = s->G + q * (size_t)dim, *gji = s->G + s->rev[q] * (size_t)dim;
+            for (int a = 0; a < dim; ++a) {
+                wi[a] = vi * gij[a];
+                wj[a] = -vj * gji[a];
+            }
+        } else { /* V_i V_j L grad W_ij */
+            for (int a = 0; a < dim; ++a)
+                for (int b = 0; b < dim; ++b) {
+                    wi[a] += vi * vj * Li[3 * a + b] * g[b];
+                    wj[a] += vi * vj * Lj[3 * a + b] * g[b];
+                }
+        }
+        double fn = 0, pi = 0;
+        if (face && ps->kind[j] != RY_KIND_SOLID) { /* the clamp face holds no stress */
+            for (int a = 0; a < dim; ++a)
+                for (int b = 0; b < dim; ++b) f[a] += si[3 * a + b] * wi[b];
+            continue;
+        }
+        if (eps > 0) {
+            const double w = ry_kernel_w(k, r) * iwdx;
+            fn = expo == 4.0 ? (w * w) * (w * w) : pow(w, expo);
+        }
+        if (vd < 0) {
+            const double mu = h * vd / (r2 + 0.01 * h * h);
+            pi = (-s->av_alpha * c * mu + s->av_beta * mu * mu) / (0.5 * (rho[i] + rho[j]));
+        }
+        for (int a = 0; a < dim; ++a) {
+            double t = 0, u = 0;
+            for (int b = 0; b < dim; ++b) {
+                t += si[3 * a + b] * wi[b] + sj[3 * a + b] * wj[b];
+                u += (Ri[3 * a + b] + Rj[3 * a + b]) * g[b];
+            }
+            f[a] += t + mm * (fn * u - pi * g[a]);
+        }
+    }
+    ry_solid_accelerate(sim, s, i, f, dim);
 }
 
 /* Per-pair arrays of the quadratic correction: the weights G (filled by the rates pass) and the
