@@ -51,7 +51,7 @@ static void usage(FILE *fp) {
             "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
             "  ryushi validate "
             "[dam_break|cavity|channel|cantilever|plate|buckling|mps|rheology|iisph|rt|eye|"
-            "embolization|embolization3d|wetting|all] [--quick]\n"
+            "embolization|embolization3d|embolization3d_all|wetting|all] [--quick]\n"
             "        [-o DIR] [--threads N]\n"
             "        run the validation cases against their references, with plots\n"
             "        (default output folder out/validate)\n"

@@ -468,11 +468,12 @@ int ry_cli_validate(int argc, char **argv) {
         strcmp(what, "plate") != 0 && strcmp(what, "buckling") != 0 && strcmp(what, "mps") != 0 &&
         strcmp(what, "rheology") != 0 && strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 &&
         strcmp(what, "eye") != 0 && strcmp(what, "embolization") != 0 &&
-        strcmp(what, "embolization3d") != 0 && strcmp(what, "wetting") != 0) {
+        strcmp(what, "embolization3d") != 0 && strcmp(what, "embolization3d_all") != 0 &&
+        strcmp(what, "wetting") != 0) {
         fprintf(stderr,
                 "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
-                "buckling, mps, rheology, iisph, rt, eye, embolization, embolization3d, wetting or "
-                "all, got '%s'\n",
+                "buckling, mps, rheology, iisph, rt, eye, embolization, embolization3d, "
+                "embolization3d_all, wetting or all, got '%s'\n",
                 what);
         return 2;
     }
@@ -497,6 +498,8 @@ int ry_cli_validate(int argc, char **argv) {
         ry_cli_validate_embolization(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "embolization3d") == 0)
         ry_cli_validate_embolization3d(v.root, v.out, v.quick, &v.failures);
+    if (strcmp(what, "embolization3d_all") == 0)
+        ry_cli_validate_embolization3d_all(v.root, v.out, v.quick, &v.failures);
     printf("validate: %s (%d failure(s)); output in %s\n", v.failures ? "FAILED" : "passed",
            v.failures, v.out);
     return v.failures ? 1 : 0;

@@ -5,7 +5,12 @@
  * experiment (11.72 s), the seed's simulation (14.0 s) and Tate's law. The run takes hours on
  * two cores: an interrupted one (Ctrl-C writes a checkpoint) goes on from its newest checkpoint
  * when the command is given again. Table on stdout and in embolization3d.md, plots in
- * embolization3d.png. */
+ * embolization3d.png.
+ *
+ * ryushi validate embolization3d_all: the same, then the tank with the catheter's tip wetted by
+ * the embolic liquid (_wetted_tip.yaml) and with a visco-elastic embolic liquid (_oldroyd_b.yaml),
+ * the two pieces the seed names as missing; each run has its table and figure, and the three
+ * detachment times are compared in embolization3d_all.md and embolization3d_all.png. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <signal.h>
@@ -87,8 +92,8 @@ static void tip_slice(ry_plot *p, int panel, const ry_sim *sim) {
     ry_plot_legend(p, panel, RY_PLOT_LEGEND_SW, &err);
 }
 
-static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, const char *png,
-                        int *failures) {
+static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, const char *title,
+                        const char *png, int *failures) {
     ry_error err = {0};
     ry_plot *p = NULL;
     if (ry_plot_new(&p, 1, 3, 1800, 600, &err) != RY_OK) {
@@ -96,7 +101,7 @@ static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, cons
         ++*failures;
         return;
     }
-    ry_plot_panel(p, 0, "Droplet below the tip (3D, l0 = 0.2 mm)", "t (s)", "mm", &err);
+    ry_plot_panel(p, 0, title, "t (s)", "mm", &err);
     ry_plot_panel(p, 1, "Aspect ratio (length / width)", "t (s)", "", &err);
     const size_t n = s->nrows;
     double *t = ry_cli_scaled_column(s, "t", 1.0),
@@ -138,61 +143,90 @@ static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, cons
     ry_plot_free(p);
 }
 
-int ry_cli_validate_embolization3d(const char *root, const char *out, int quick, int *failures) {
+/* One tank of the comparison: the case file's suffix after mps_embolization_3d_coarse, and what
+ * it changes. */
+typedef struct variant {
+    const char *stem, *label;
+} variant;
+
+static const variant variants[] = {
+    {"", "the case as it is"},
+    {"_wetted_tip", "the catheter's tip wetted by the embolic liquid (60 degrees)"},
+    {"_oldroyd_b", "the embolic liquid Oldroyd-B (lambda 0.1 s, 10 % solvent)"},
+};
+#define NVARIANTS (sizeof variants / sizeof variants[0])
+
+/* What a run gives the comparison: its series (owned) and the figures read from it. */
+typedef struct result {
+    ry_table s;
+    double t_det, v_det, t_end, vmax, len_max;
+    int ok;
+} result;
+
+/* Runs one tank (resuming), prints its table, writes embolization3d{stem}.md and .png, and, with
+ * checks, asserts the injected volume, a stable run and the detachment against the experiment
+ * (the case as it is); the other tanks assert the injected volume and a stable run only. */
+static void run_variant(const char *root, const char *out, int quick, const variant *v, int checks,
+                        int *failures, result *res) {
     ry_error err = {0};
-    char cpath[4096], odir[4096], spath[4200], mdp[4096], png[4096];
-    snprintf(cpath, sizeof cpath, "%s/cases/mps_embolization_3d_coarse.yaml", root);
-    snprintf(odir, sizeof odir, "%s/embolization_3d_coarse%s", out, quick ? "_quick" : "");
+    char cpath[4096], odir[4096], spath[4200], mdp[4096], png[4096], title[256];
+    snprintf(cpath, sizeof cpath, "%s/cases/mps_embolization_3d_coarse%s.yaml", root, v->stem);
+    snprintf(odir, sizeof odir, "%s/embolization_3d_coarse%s%s", out, v->stem,
+             quick ? "_quick" : "");
     snprintf(spath, sizeof spath, "%s/series.csv", odir);
-    snprintf(mdp, sizeof mdp, "%s/embolization3d.md", out);
-    snprintf(png, sizeof png, "%s/embolization3d.png", out);
-    printf("Liquid embolization, 3D, l0 = 0.2 mm (cases/mps_embolization_3d_coarse.yaml), %s\n",
-           quick ? "to 0.5 s" : "until the droplet detaches");
+    snprintf(mdp, sizeof mdp, "%s/embolization3d%s.md", out, v->stem);
+    snprintf(png, sizeof png, "%s/embolization3d%s.png", out, v->stem);
+    snprintf(title, sizeof title, "Droplet below the tip (3D, l0 = 0.2 mm)%s", *v->stem ? "," : "");
+    if (*v->stem) snprintf(title + strlen(title), sizeof title - strlen(title), " %s", v->stem + 1);
+    printf("Liquid embolization, 3D, l0 = 0.2 mm (cases/mps_embolization_3d_coarse%s.yaml: %s), "
+           "%s\n",
+           v->stem, v->label, quick ? "to 0.5 s" : "until the droplet detaches");
+    memset(res, 0, sizeof *res);
+    res->t_det = -1;
     const char *sets[2] = {"output.vtk=false", "time.end=0.5"};
     ry_sim sim;
     ry_run_stats stats = {0};
-    ry_table s = {0};
+    ry_table *s = &res->s;
     /* an interrupted run (Ctrl-C) is reported as far as it went, and counts as a failure */
     const ry_status rs = run_or_resume(cpath, quick ? 2 : 1, sets, odir, &sim, &stats, &err);
     if (rs == RY_ERR_INTERRUPTED) {
         fprintf(stderr, "ryushi: validate: %s; the same command goes on from there\n", err.msg);
         ++*failures;
     }
-    if ((rs != RY_OK && rs != RY_ERR_INTERRUPTED) || ry_table_read(&s, spath, &err) != RY_OK) {
+    if ((rs != RY_OK && rs != RY_ERR_INTERRUPTED) || ry_table_read(s, spath, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", err.msg);
         if (rs == RY_OK || rs == RY_ERR_INTERRUPTED) ry_sim_free(&sim);
         ++*failures;
-        return *failures;
+        return;
     }
     const double wall = stats.wall_s;
     const long steps = stats.steps;
     const size_t np = sim.ps.n;
-    const int ct = ry_table_col(&s, "t"), ci = ry_table_col(&s, "inflow_volume"),
-              cl = ry_table_col(&s, "droplet_length"), cw = ry_table_col(&s, "droplet_width"),
-              ca = ry_table_col(&s, "droplet_aspect"), cd = ry_table_col(&s, "droplet_detached"),
-              cs = ry_table_col(&s, "max_speed");
-    if (ct < 0 || ci < 0 || cl < 0 || cw < 0 || ca < 0 || cd < 0 || cs < 0 || s.nrows < 2) {
+    const int ct = ry_table_col(s, "t"), ci = ry_table_col(s, "inflow_volume"),
+              cl = ry_table_col(s, "droplet_length"), cw = ry_table_col(s, "droplet_width"),
+              ca = ry_table_col(s, "droplet_aspect"), cd = ry_table_col(s, "droplet_detached"),
+              cs = ry_table_col(s, "max_speed");
+    if (ct < 0 || ci < 0 || cl < 0 || cw < 0 || ca < 0 || cd < 0 || cs < 0 || s->nrows < 2) {
         fprintf(stderr, "ryushi: validate: %s lacks a column or rows\n", spath);
-        ry_table_free(&s);
         ry_sim_free(&sim);
         ++*failures;
-        return *failures;
+        return;
     }
-    const size_t last = s.nrows - 1;
-    const double t_end = ry_table_at(&s, last, ct), vin = ry_table_at(&s, last, ci);
+    const size_t last = s->nrows - 1;
+    const double t_end = ry_table_at(s, last, ct), vin = ry_table_at(s, last, ci);
     double u_in = 0;
     for (int b = 0; b < sim.nopen; ++b)
         if (sim.open[b].type == RY_OPEN_INLET) u_in = fabs(sim.open[b].velocity[2]);
     /* the case's flow rate through its square bore, and the seed's through its round one */
     const double q = u_in * BORE * BORE, q_seed = SEED_U * RY_PI * 0.25 * SEED_BORE * SEED_BORE;
     double t_det = -1, v_det = NAN, vmax = 0, len_max = 0;
-    for (size_t r = 0; r < s.nrows; ++r) {
-        if (t_det < 0 && ry_table_at(&s, r, cd) > 0.5) {
-            t_det = ry_table_at(&s, r, ct);
-            v_det = ry_table_at(&s, r, ci);
+    for (size_t r = 0; r < s->nrows; ++r) {
+        if (t_det < 0 && ry_table_at(s, r, cd) > 0.5) {
+            t_det = ry_table_at(s, r, ct);
+            v_det = ry_table_at(s, r, ci);
         }
-        if (t_det < 0) len_max = fmax(len_max, ry_table_at(&s, r, cl));
-        vmax = fmax(vmax, ry_table_at(&s, r, cs));
+        if (t_det < 0) len_max = fmax(len_max, ry_table_at(s, r, cl));
+        vmax = fmax(vmax, ry_table_at(s, r, cs));
     }
     /* Tate's law: the droplet's weight in water reaches sigma times the tip's perimeter */
     const double v_tate = SIGMA_AB * 4 * OUTER / (DRHO * G),
@@ -205,12 +239,12 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
         fprintf(md, "| t [s] | length [mm] | width [mm] | aspect | injected [mm^3] |\n"
                     "|---|---|---|---|---|\n");
     double t_prev = 0;
-    for (size_t r = 1; r < s.nrows; ++r) {
-        const double tr = ry_table_at(&s, r, ct);
+    for (size_t r = 1; r < s->nrows; ++r) {
+        const double tr = ry_table_at(s, r, ct);
         if ((fabs(tr - round(tr)) > 1e-6 && r != last) || tr == t_prev) continue;
         t_prev = tr;
-        const double row[4] = {1e3 * ry_table_at(&s, r, cl), 1e3 * ry_table_at(&s, r, cw),
-                               ry_table_at(&s, r, ca), 1e9 * ry_table_at(&s, r, ci)};
+        const double row[4] = {1e3 * ry_table_at(s, r, cl), 1e3 * ry_table_at(s, r, cw),
+                               ry_table_at(s, r, ca), 1e9 * ry_table_at(s, r, ci)};
         printf("  %6.2f %12.2f %11.2f %7.2f %16.2f\n", tr, row[0], row[1], row[2], row[3]);
         if (md)
             fprintf(md, "| %.2f | %.2f | %.2f | %.2f | %.2f |\n", tr, row[0], row[1], row[2],
@@ -252,13 +286,126 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
     ry_cli_check("injected volume within 1 % of U A t (or a layer of the bore)",
                  fabs(vin - q * t_end) < fmax(0.01 * q * t_end, layer), failures);
     ry_cli_check("largest speed below 0.3 m/s (a stable run)", vmax < 0.3, failures);
-    if (!quick) {
+    if (checks && !quick) {
         ry_cli_check("the droplet detaches", t_det > 0, failures);
         ry_cli_check("detaches within 10 % of the experiment (11.72 s)",
                      t_det > 0 && fabs(t_det / T_EXPERIMENT - 1) < 0.10, failures);
     }
-    plot_figure(&s, &sim, t_det, png, failures);
-    ry_table_free(&s);
+    plot_figure(s, &sim, t_det, title, png, failures);
     ry_sim_free(&sim);
+    res->t_det = t_det;
+    res->v_det = v_det;
+    res->t_end = t_end;
+    res->vmax = vmax;
+    res->len_max = len_max;
+    res->ok = 1;
+}
+
+int ry_cli_validate_embolization3d(const char *root, const char *out, int quick, int *failures) {
+    result r;
+    run_variant(root, out, quick, &variants[0], 1, failures, &r);
+    ry_table_free(&r.s);
+    return *failures;
+}
+
+/* The droplets' lengths and widths of the runs in one figure, with the detachment times of the
+ * experiment and the seed's simulation. */
+static void plot_compare(const result *res, const char *png, int *failures) {
+    ry_error err = {0};
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 2, 1400, 600, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+        return;
+    }
+    ry_plot_panel(p, 0, "Droplet length below the tip (3D, l0 = 0.2 mm)", "t (s)", "mm", &err);
+    ry_plot_panel(p, 1, "Droplet width", "t (s)", "mm", &err);
+    const char *names[] = {"as it is", "tip wetted", "Oldroyd-B"};
+    double tmax = 0, ymax = 0;
+    int ok = 1;
+    for (size_t k = 0; k < NVARIANTS; ++k) {
+        if (!res[k].ok) continue;
+        const ry_table *s = &res[k].s;
+        double *t = ry_cli_scaled_column(s, "t", 1.0),
+               *len = ry_cli_scaled_column(s, "droplet_length", 1e3),
+               *wid = ry_cli_scaled_column(s, "droplet_width", 1e3);
+        if (t && len && wid && s->nrows > 1) {
+            ry_plot_series(p, 0, names[k], s->nrows, t, len, ry_plot_style_line(), &err);
+            ry_plot_series(p, 1, names[k], s->nrows, t, wid, ry_plot_style_line(), &err);
+            tmax = fmax(tmax, t[s->nrows - 1]);
+            for (size_t r = 0; r < s->nrows; ++r) ymax = fmax(ymax, fmax(len[r], wid[r]));
+        } else {
+            ok = 0;
+        }
+        free(t);
+        free(len);
+        free(wid);
+    }
+    const double marks[2] = {T_EXPERIMENT, T_SEED_SIM};
+    const char *mnames[2] = {"experiment 11.72 s", "seed's simulation 14.0 s"};
+    for (int k = 0; k < 2 && ok; ++k) {
+        if (marks[k] > 1.3 * tmax) continue;
+        const double xs[2] = {marks[k], marks[k]}, ys[2] = {0, ymax};
+        ry_plot_style st = ry_plot_style_line();
+        st.dash = (ry_plot_dash)(k + 2);
+        ry_plot_series(p, 0, mnames[k], 2, xs, ys, st, &err);
+    }
+    ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
+    ry_plot_legend(p, 1, RY_PLOT_LEGEND_NW, &err);
+    if (!ok || ry_plot_write_png(p, png, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", ok ? err.msg : "series lack a column");
+        ++*failures;
+    } else {
+        printf("  plot: %s\n", png);
+    }
+    ry_plot_free(p);
+}
+
+int ry_cli_validate_embolization3d_all(const char *root, const char *out, int quick,
+                                       int *failures) {
+    result res[NVARIANTS];
+    for (size_t k = 0; k < NVARIANTS; ++k)
+        run_variant(root, out, quick, &variants[k], k == 0, failures, &res[k]);
+    char mdp[4096], png[4096];
+    snprintf(mdp, sizeof mdp, "%s/embolization3d_all.md", out);
+    snprintf(png, sizeof png, "%s/embolization3d_all.png", out);
+    ry_error err = {0};
+    ry_atomic_file af = {0};
+    FILE *md = ry_atomic_open(&af, mdp, &err) == RY_OK ? af.fp : NULL;
+    printf("Liquid embolization, 3D, l0 = 0.2 mm: the detachment with and without the tip's "
+           "wetting and the visco-elasticity\n");
+    if (md)
+        fprintf(md, "| case | detached at [s] | against the experiment (11.72 s) | against the "
+                    "seed's simulation (14.0 s) | injected then [mm^3] | longest before [mm] | "
+                    "largest speed [m/s] |\n|---|---|---|---|---|---|---|\n");
+    for (size_t k = 0; k < NVARIANTS; ++k) {
+        const result *r = &res[k];
+        char when[64] = "", a[32] = "", b[32] = "", v[32] = "";
+        if (!r->ok) {
+            snprintf(when, sizeof when, "no result");
+        } else if (r->t_det > 0) {
+            snprintf(when, sizeof when, "%.2f", r->t_det);
+            snprintf(a, sizeof a, "%+.1f %%", 100 * (r->t_det / T_EXPERIMENT - 1));
+            snprintf(b, sizeof b, "%+.1f %%", 100 * (r->t_det / T_SEED_SIM - 1));
+            snprintf(v, sizeof v, "%.2f", 1e9 * r->v_det);
+        } else {
+            snprintf(when, sizeof when, "not by %.2f", r->t_end);
+        }
+        printf("  %-64s %-14s %9s %9s %8s %6.2f mm %6.3f m/s\n", variants[k].label, when, a, b, v,
+               1e3 * r->len_max, r->vmax);
+        if (md)
+            fprintf(md, "| %s | %s | %s | %s | %s | %.2f | %.3f |\n", variants[k].label, when, a, b,
+                    v, 1e3 * r->len_max, r->vmax);
+    }
+    if (md) {
+        if (ry_atomic_commit(&af, &err) != RY_OK) {
+            fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+            ++*failures;
+        } else {
+            printf("  table: %s\n", mdp);
+        }
+    }
+    plot_compare(res, png, failures);
+    for (size_t k = 0; k < NVARIANTS; ++k) ry_table_free(&res[k].s);
     return *failures;
 }

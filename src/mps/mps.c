@@ -188,8 +188,8 @@ static ry_status body_thin(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
 
 /* Wetting of one wall body (docs/mps.md, "Wetting with two liquids"), potential model:
  * bodies[k].contact_angle, a number for every liquid or a mapping from material names to
- * angles (liquids not named keep their angle on the other walls). Such a body's walls form a
- * group of their own (M->body_group). */
+ * angles (liquids not named keep their angle on the other walls). Bodies with the same angles
+ * share a group of walls (M->body_group); each other set of angles has a group of its own. */
 static ry_status body_angles(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
     char where[256], key[160];
     int groups = 1;
@@ -200,36 +200,42 @@ static ry_status body_angles(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
                  "%s: key '%s': a contact angle per wall body needs surface_tension.model "
                  "potential",
                  ry_case_where(c, key, where, sizeof where), key);
-        RY_CHECK(err, groups < RY_ST_WALL_GROUPS, RY_ERR_INPUT,
-                 "%s: key '%s': at most %d wall bodies with contact angles of their own",
-                 ry_case_where(c, key, where, sizeof where), key, RY_ST_WALL_GROUPS - 1);
         RY_TRY(body_is_wall(sim, c, k, key, err));
-        if (!M->body_group) {
-            M->body_group = calloc(sim->nbodies, 1);
-            RY_CHECK(err, M->body_group != NULL, RY_ERR_NOMEM, "out of memory");
-        }
-        const int g = groups++;
-        M->body_group[k] = (uint8_t)g;
+        double row[sizeof M->st.wall_ratio[0] / sizeof M->st.wall_ratio[0][0]];
         int named = 0;
         for (int m = 0; m < sim->nmat; ++m) {
             char mk[224];
             snprintf(mk, sizeof mk, "%s.%s", key, sim->mat[m].name);
-            double r = M->st.wall_ratio[0][m];
+            row[m] = M->st.wall_ratio[0][m];
             if (ry_case_has(c, mk)) {
                 double th;
                 RY_TRY(ry_case_double(c, mk, NULL, 0.0, 180.0, &th, err));
-                r = wall_ratio_of(th);
+                row[m] = wall_ratio_of(th);
                 ++named;
             }
-            M->st.wall_ratio[g][m] = r;
         }
-        if (named) continue;
-        double th;
-        RY_CHECK(err, ry_case_double(c, key, NULL, 0.0, 180.0, &th, err) == RY_OK, RY_ERR_INPUT,
-                 "%s: key '%s': expected an angle in degrees (0..180), or a mapping from material "
-                 "names to angles",
-                 ry_case_where(c, key, where, sizeof where), key);
-        for (int m = 0; m < sim->nmat; ++m) M->st.wall_ratio[g][m] = wall_ratio_of(th);
+        if (!named) {
+            double th;
+            RY_CHECK(err, ry_case_double(c, key, NULL, 0.0, 180.0, &th, err) == RY_OK, RY_ERR_INPUT,
+                     "%s: key '%s': expected an angle in degrees (0..180), or a mapping from "
+                     "material names to angles",
+                     ry_case_where(c, key, where, sizeof where), key);
+            for (int m = 0; m < sim->nmat; ++m) row[m] = wall_ratio_of(th);
+        }
+        int g = 1;
+        while (g < groups && memcmp(M->st.wall_ratio[g], row, sim->nmat * sizeof *row) != 0) ++g;
+        if (g == groups) {
+            RY_CHECK(err, groups < RY_ST_WALL_GROUPS, RY_ERR_INPUT,
+                     "%s: key '%s': at most %d different sets of contact angles on wall bodies",
+                     ry_case_where(c, key, where, sizeof where), key, RY_ST_WALL_GROUPS - 1);
+            for (int m = 0; m < sim->nmat; ++m) M->st.wall_ratio[g][m] = row[m];
+            ++groups;
+        }
+        if (!M->body_group) {
+            M->body_group = calloc(sim->nbodies, 1);
+            RY_CHECK(err, M->body_group != NULL, RY_ERR_NOMEM, "out of memory");
+        }
+        M->body_group[k] = (uint8_t)g;
     }
     return RY_OK;
 }
