@@ -217,9 +217,11 @@ struct ry_sim {
     int nprofiles;
     ry_profile *profiles;
     /* Case section `droplet` (the droplet_* probes): the material whose droplet hangs from a
-     * nozzle or catheter (-1: none) and the height of the tip along the vertical (last) axis. */
+     * nozzle or catheter (-1: none), the height of the tip along the vertical (last) axis and
+     * the horizontal position of the nozzle's axis (droplet.axis, default the origin). */
     int droplet_material;
     double droplet_tip;
+    double droplet_axis[2];
     /* Case key time.stop_when: the run ends at the first output whose measured quantity (one
      * of probes, index stop_probe; -1: none) lies above (stop_above) or below stop_value.
      * stop_reason then says so. */

@@ -117,7 +117,8 @@ static ry_status read_domain(ry_sim *sim, ry_case *c, ry_error *err) {
     return RY_OK;
 }
 
-/* The `droplet` section: material (name) and tip (height along the last axis). */
+/* The `droplet` section: material (name), tip (height along the last axis) and axis (the
+ * nozzle's horizontal position, dim - 1 numbers, default 0). */
 static ry_status read_droplet(ry_sim *sim, ry_case *c, ry_error *err) {
     sim->droplet_material = -1;
     if (!ry_case_has(c, "droplet")) return RY_OK;
@@ -129,6 +130,8 @@ static ry_status read_droplet(ry_sim *sim, ry_case *c, ry_error *err) {
     RY_CHECK(err, sim->droplet_material >= 0, RY_ERR_INPUT,
              "%s: key 'droplet.material': no material named '%s'",
              ry_case_where(c, "droplet.material", where, sizeof where), name);
+    const double origin[2] = {0, 0};
+    RY_TRY(ry_case_vector(c, "droplet.axis", origin, sim->dim - 1, sim->droplet_axis, err));
     return ry_case_double(c, "droplet.tip", NULL, -INFINITY, INFINITY, &sim->droplet_tip, err);
 }
 

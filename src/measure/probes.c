@@ -151,7 +151,10 @@ static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
  * attached body below the tip plus one spacing (0 if none); [2] length / width (NAN if no width);
  * [3] detached: 1 when a body of at least 10 particles lies wholly below the tip, else 0;
  * [4] volume: the attached body's particles below the tip times the particle volume dx^dim
- * (a droplet that leaves the tip sideways or upwards, a remnant still hanging, shows here). */
+ * (a droplet that leaves the tip sideways or upwards, a remnant still hanging, shows here);
+ * [5] offset: the horizontal distance from the nozzle's axis (droplet.axis) to the centroid of
+ * those particles (0 if none): a droplet that slides off the tip moves away from the axis, one
+ * that necks stays on it. */
 static uint32_t uf_find(uint32_t *parent, uint32_t a) {
     while (parent[a] != a) {
         parent[a] = parent[parent[a]];
@@ -160,7 +163,7 @@ static uint32_t uf_find(uint32_t *parent, uint32_t a) {
     return a;
 }
 
-static ry_status droplet_measure(const ry_sim *sim, double out[5], ry_error *err) {
+static ry_status droplet_measure(const ry_sim *sim, double out[6], ry_error *err) {
     RY_CHECK(err, sim->droplet_material >= 0, RY_ERR_INPUT,
              "the droplet measurements need the case section 'droplet' (material, tip)");
     const ry_particles *ps = &sim->ps;
@@ -213,7 +216,8 @@ static ry_status droplet_measure(const ry_sim *sim, double out[5], ry_error *err
             count[r]++;
             if (x[up][i] >= tip - 0.5 * sim->dx) flags[r] = 1;
         }
-    double low = INFINITY, lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    double low = INFINITY, lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY},
+           sum[2] = {0, 0};
     int detached = 0;
     size_t below = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -229,6 +233,7 @@ static ry_status droplet_measure(const ry_sim *sim, double out[5], ry_error *err
         for (int d = 0; d < up; ++d) {
             lo[d] = fmin(lo[d], x[d][i]);
             hi[d] = fmax(hi[d], x[d][i]);
+            sum[d] += x[d][i];
         }
     }
 #undef IN_DROP
@@ -243,12 +248,18 @@ static ry_status droplet_measure(const ry_sim *sim, double out[5], ry_error *err
     out[2] = width > 0 ? out[0] / width : NAN;
     out[3] = detached;
     out[4] = (double)below * pow(sim->dx, sim->dim);
+    double off2 = 0;
+    for (int d = 0; d < up && below; ++d) {
+        const double e = sum[d] / (double)below - sim->droplet_axis[d];
+        off2 += e * e;
+    }
+    out[5] = sqrt(off2);
     return RY_OK;
 }
 
 /* One of droplet_measure's values. */
 static ry_status droplet_value(const ry_sim *sim, int k, double *v, ry_error *err) {
-    double o[5];
+    double o[6];
     RY_TRY(droplet_measure(sim, o, err));
     *v = o[k];
     return RY_OK;
@@ -267,6 +278,9 @@ static ry_status probe_droplet_detached(const ry_sim *sim, double *v, ry_error *
 }
 static ry_status probe_droplet_volume(const ry_sim *sim, double *v, ry_error *err) {
     return droplet_value(sim, 4, v, err);
+}
+static ry_status probe_droplet_offset(const ry_sim *sim, double *v, ry_error *err) {
+    return droplet_value(sim, 5, v, err);
 }
 
 static ry_status probe_inflow(const ry_sim *sim, double *v, ry_error *err) {
@@ -476,6 +490,11 @@ static const ry_probe p_droplet_volume = {
     "section droplet: volume of the attached droplet below the tip (its particles times dx^dim) "
     "[m^3, m^2 in 2D]",
     probe_droplet_volume};
+static const ry_probe p_droplet_offset = {
+    "droplet_offset",
+    "section droplet: horizontal distance from the nozzle's axis (droplet.axis) to the centroid "
+    "of the attached droplet below the tip [m]",
+    probe_droplet_offset};
 
 static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_filled,
@@ -509,6 +528,7 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_droplet_aspect,
                                              &p_droplet_detached,
                                              &p_droplet_volume,
+                                             &p_droplet_offset,
                                              NULL};
 
 const ry_probe *const *ry_probes(void) {

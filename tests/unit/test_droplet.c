@@ -31,7 +31,9 @@ static ry_status setup(ry_sim *sim, ry_case **c, int with_section, ry_error *err
              "scheme: {name: static}\n"
              "time: {end: 0.1}\n"
              "output: {vtk: false}\n%s",
-             with_section ? "droplet: {material: embolic, tip: 1.0e-3}\n" : "");
+             with_section == 2 ? "droplet: {material: embolic, tip: 1.0e-3, axis: [2.0e-4]}\n"
+             : with_section    ? "droplet: {material: embolic, tip: 1.0e-3}\n"
+                               : "");
     memset(sim, 0, sizeof *sim);
     RY_TRY(ry_case_load_string(c, "droplet.yaml", text, err));
     return ry_sim_setup(sim, *c, tmpdir, err);
@@ -63,6 +65,17 @@ static void test_attached_and_detached(void **state) {
     assert_true(eval(&sim, "droplet_detached") == 0);
     /* 8 x 6 particles below the tip, 1e-8 m^2 each */
     assert_float_equal(eval(&sim, "droplet_volume"), 48 * 1e-8, 1e-18);
+    /* their centroid at x = 0.2 mm, the axis at the origin (no droplet.axis) */
+    assert_float_equal(eval(&sim, "droplet_offset"), 2.0e-4, 1e-12);
+    /* the nozzle's axis at x = 0.2 mm: the droplet hangs on it; moved by 0.3 mm it slides off */
+    sim.droplet_axis[0] = 2.0e-4;
+    assert_float_equal(eval(&sim, "droplet_offset"), 0.0, 1e-12);
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.material[i] == 1 && sim.ps.f[RY_F_Y][i] < 1.0e-3) sim.ps.f[RY_F_X][i] -= 3e-4;
+    assert_float_equal(eval(&sim, "droplet_offset"), 3.0e-4, 1e-12);
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.material[i] == 1 && sim.ps.f[RY_F_Y][i] < 1.0e-3) sim.ps.f[RY_F_X][i] += 3e-4;
+    sim.droplet_axis[0] = 0;
     /* A void in the bore: the liquid above the tip moved up by three spacings. The droplet's
      * top (0.95 mm) still touches the tip, so it hangs from it, with the same size. */
     for (size_t i = 0; i < sim.ps.n; ++i)
@@ -98,6 +111,19 @@ static void test_attached_and_detached(void **state) {
     ry_case_free(c);
 }
 
+/* droplet.axis from the case: the droplet of setup hangs on x = 0.2 mm. */
+static void test_axis_from_the_case(void **state) {
+    (void)state;
+    ry_sim sim;
+    ry_case *c = NULL;
+    ry_error err = {0};
+    assert_int_equal(setup(&sim, &c, 2, &err), RY_OK);
+    assert_float_equal(sim.droplet_axis[0], 2.0e-4, 0);
+    assert_float_equal(eval(&sim, "droplet_offset"), 0.0, 1e-12);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 static void test_needs_the_section(void **state) {
     (void)state;
     ry_sim sim;
@@ -117,6 +143,7 @@ static void test_needs_the_section(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_attached_and_detached),
+        cmocka_unit_test(test_axis_from_the_case),
         cmocka_unit_test(test_needs_the_section),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
