@@ -141,6 +141,7 @@ typedef struct ry_guard {
     double max_speed;            /* [m/s] any particle faster */
     double rho_min, rho_max;     /* fluid density / reference density outside [min, max] */
     double max_outside_fraction; /* of the fluid particles outside the domain box */
+    double min_dt_ratio;         /* the stable step below this times the run's largest */
     int snapshot_every;          /* steps between in-memory copies of the last good state */
 } ry_guard;
 

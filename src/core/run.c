@@ -16,6 +16,18 @@ static int checkpoint_due(ry_sim *sim, double eps) {
     return k->wall_interval > 0 && ry_wall_time() - k->last_wall >= k->wall_interval ? 2 : 0;
 }
 
+/* The largest particle speed (over all ranks), for a diagnosis. */
+static double largest_speed(ry_sim *sim) {
+    const ry_particles *ps = &sim->ps;
+    double v2 = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        double s = 0;
+        for (int d = 0; d < sim->dim; ++d) s += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        v2 = fmax(v2, s);
+    }
+    return sim->par ? sim->par->max(sim, sqrt(v2)) : sqrt(v2);
+}
+
 /* On instability: the last good state goes to disk (VTK and checkpoint), named in the message. */
 static void keep_last_good(ry_sim *sim, ry_error *err) {
     if (!sim->snapshot && sim->par) {
@@ -60,6 +72,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
     const int snap_every = sim->guard.snapshot_every;
     if (snap_every > 0) RY_TRY(ry_sim_snapshot_take(sim, err));
     const double eps = 1e-12 * sim->t_end;
+    double dt_peak = 0; /* the largest stable step of this run (guard.min_dt_ratio) */
     char ckpt[4300] = "";
     while (sim->t < sim->t_end - eps && sim->step < sim->max_steps && !sim->finished) {
         int stop = hooks && hooks->stop && *hooks->stop;
@@ -80,6 +93,20 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             st = ry_error_set(err, RY_ERR_UNSTABLE,
                               "unstable at step %ld, t = %.6g s: time step %g is not positive",
                               sim->step, sim->t, dt);
+            keep_last_good(sim, err);
+            goto done;
+        }
+        /* A step that collapses (the speeds or forces of a flow that has blown up set it)
+         * would let the run crawl on without end. The first steps do not count towards the
+         * peak: from rest a scheme may have no limit yet and take its fallback. */
+        if (sim->step - step0 >= 10) dt_peak = fmax(dt_peak, dt);
+        if (dt < sim->guard.min_dt_ratio * dt_peak) {
+            st = ry_error_set(err, RY_ERR_UNSTABLE,
+                              "unstable at step %ld, t = %.6g s: the time step %.4g s fell below "
+                              "guard.min_dt_ratio = %g times the largest of this run (%.4g s); "
+                              "largest speed %.4g m/s",
+                              sim->step, sim->t, dt, sim->guard.min_dt_ratio, dt_peak,
+                              largest_speed(sim));
             keep_last_good(sim, err);
             goto done;
         }

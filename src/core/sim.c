@@ -223,7 +223,7 @@ static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {
 /* Limits of a sound run; the scheme's init may have set defaults (0: no limit). */
 static ry_status read_guard(ry_sim *sim, ry_case *c, ry_error *err) {
     ry_guard *g = &sim->guard;
-    double vmax = g->max_speed, rmin = g->rho_min, rmax = g->rho_max, out = 0.01;
+    double vmax = g->max_speed, rmin = g->rho_min, rmax = g->rho_max, out = 0.01, dtr = 1e-4;
     long every = 10; /* a copy every step would cost ~7 % of a WCSPH step */
     char where[256];
     RY_TRY(ry_case_double(c, "guard.max_speed", &vmax, 0.0, 1e300, &g->max_speed, err));
@@ -235,6 +235,7 @@ static ry_status read_guard(ry_sim *sim, ry_case *c, ry_error *err) {
              ry_case_where(c, "guard.density_max", where, sizeof where));
     RY_TRY(ry_case_double(c, "guard.max_outside_fraction", &out, 0.0, 1.0, &g->max_outside_fraction,
                           err));
+    RY_TRY(ry_case_double(c, "guard.min_dt_ratio", &dtr, 0.0, 0.999999, &g->min_dt_ratio, err));
     RY_TRY(ry_case_int(c, "guard.snapshot_every", &every, 0, 1000000000L, &every, err));
     g->snapshot_every = (int)every;
     return RY_OK;
