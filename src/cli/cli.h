@@ -39,8 +39,8 @@ int ry_cli_validate_embolization(const char *root, const char *out, int quick, i
 /* The coarse 3D embolization tank until its droplet detaches, resumable
  * (validate_embolization3d.c). */
 int ry_cli_validate_embolization3d(const char *root, const char *out, int quick, int *failures);
-/* The same tank as it is, with an Oldroyd-B embolic liquid, and with the tip deeper, without
- * and with its wetting: the detachment times compared (validate_embolization3d.c). */
+/* The same tank as it is and with an Oldroyd-B embolic liquid: the detachment times compared
+ * (validate_embolization3d.c). */
 int ry_cli_validate_embolization3d_all(const char *root, const char *out, int quick, int *failures);
 /* Non-Newtonian channel flows (validate_rheology.c). */
 int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *failures);
