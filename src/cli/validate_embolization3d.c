@@ -92,6 +92,22 @@ static void tip_slice(ry_plot *p, int panel, const ry_sim *sim) {
     ry_plot_legend(p, panel, RY_PLOT_LEGEND_SW, &err);
 }
 
+/* The detachment times as vertical marks in panel 0, from 0 to ymax: ryushi's t_det (if it
+ * detached), the experiment's and the seed's simulation's, each where it lies within 1.3 times
+ * the last time tmax. */
+static void detachment_marks(ry_plot *p, double t_det, double tmax, double ymax) {
+    ry_error err = {0};
+    const double marks[3] = {t_det, T_EXPERIMENT, T_SEED_SIM};
+    const char *names[3] = {"detached (ryushi)", "experiment 11.72 s", "seed's simulation 14.0 s"};
+    for (int k = 0; k < 3; ++k) {
+        if (!(marks[k] > 0) || marks[k] > 1.3 * tmax) continue;
+        const double xs[2] = {marks[k], marks[k]}, ys[2] = {0, ymax};
+        ry_plot_style st = ry_plot_style_line();
+        st.dash = (ry_plot_dash)(k + 1);
+        ry_plot_series(p, 0, names[k], 2, xs, ys, st, &err);
+    }
+}
+
 static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, const char *title,
                         const char *png, int *failures) {
     ry_error err = {0};
@@ -115,17 +131,7 @@ static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, cons
         ry_plot_series(p, 1, "ryushi", n - 1, t + 1, asp + 1, ry_plot_style_line(), &err);
         double ymax = 0;
         for (size_t r = 0; r < n; ++r) ymax = fmax(ymax, fmax(len[r], wid[r]));
-        /* the detachment times as vertical marks */
-        const double marks[3] = {t_det, T_EXPERIMENT, T_SEED_SIM};
-        const char *names[3] = {"detached (ryushi)", "experiment 11.72 s",
-                                "seed's simulation 14.0 s"};
-        for (int k = 0; k < 3; ++k) {
-            if (!(marks[k] > 0) || marks[k] > 1.3 * t[n - 1]) continue;
-            const double xs[2] = {marks[k], marks[k]}, ys[2] = {0, ymax};
-            ry_plot_style st = ry_plot_style_line();
-            st.dash = (ry_plot_dash)(k + 1);
-            ry_plot_series(p, 0, names[k], 2, xs, ys, st, &err);
-        }
+        detachment_marks(p, t_det, t[n - 1], ymax);
         ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
         ry_plot_legend(p, 1, RY_PLOT_LEGEND_NE, &err);
         tip_slice(p, 2, sim);
@@ -146,12 +152,12 @@ static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, cons
 /* One tank of the comparison: the case file's suffix after mps_embolization_3d_coarse, and what
  * it changes. */
 typedef struct variant {
-    const char *stem, *label;
+    const char *stem, *name, *label; /* name: in titles and legends */
 } variant;
 
 static const variant variants[] = {
-    {"", "the case as it is"},
-    {"_oldroyd_b", "the embolic liquid Oldroyd-B (lambda 0.1 s, 10 % solvent)"},
+    {"", "Newtonian", "the case as it is"},
+    {"_oldroyd_b", "Oldroyd-B", "the embolic liquid Oldroyd-B (lambda 0.1 s, 10 % solvent)"},
 };
 #define NVARIANTS (sizeof variants / sizeof variants[0])
 
@@ -175,8 +181,8 @@ static void run_variant(const char *root, const char *out, int quick, const vari
     snprintf(spath, sizeof spath, "%s/series.csv", odir);
     snprintf(mdp, sizeof mdp, "%s/embolization3d%s.md", out, v->stem);
     snprintf(png, sizeof png, "%s/embolization3d%s.png", out, v->stem);
-    snprintf(title, sizeof title, "Droplet below the tip (3D, l0 = 0.2 mm)%s", *v->stem ? "," : "");
-    if (*v->stem) snprintf(title + strlen(title), sizeof title - strlen(title), " %s", v->stem + 1);
+    snprintf(title, sizeof title, "Droplet below the tip (3D, l0 = 0.2 mm)%s%s",
+             *v->stem ? ", " : "", *v->stem ? v->name : "");
     printf("Liquid embolization, 3D, l0 = 0.2 mm (cases/mps_embolization_3d_coarse%s.yaml: %s), "
            "%s\n",
            v->stem, v->label, quick ? "to 0.5 s" : "until the droplet detaches");
@@ -333,7 +339,6 @@ static void plot_compare(const result *res, const char *png, int *failures) {
     }
     ry_plot_panel(p, 0, "Droplet length below the tip (3D, l0 = 0.2 mm)", "t (s)", "mm", &err);
     ry_plot_panel(p, 1, "Droplet width", "t (s)", "mm", &err);
-    const char *names[] = {"Newtonian (as it is)", "Oldroyd-B"};
     double tmax = 0, ymax = 0;
     int ok = 1;
     for (size_t k = 0; k < NVARIANTS; ++k) {
@@ -343,8 +348,8 @@ static void plot_compare(const result *res, const char *png, int *failures) {
                *len = ry_cli_scaled_column(s, "droplet_length", 1e3),
                *wid = ry_cli_scaled_column(s, "droplet_width", 1e3);
         if (t && len && wid && s->nrows > 1) {
-            ry_plot_series(p, 0, names[k], s->nrows, t, len, ry_plot_style_line(), &err);
-            ry_plot_series(p, 1, names[k], s->nrows, t, wid, ry_plot_style_line(), &err);
+            ry_plot_series(p, 0, variants[k].name, s->nrows, t, len, ry_plot_style_line(), &err);
+            ry_plot_series(p, 1, variants[k].name, s->nrows, t, wid, ry_plot_style_line(), &err);
             tmax = fmax(tmax, t[s->nrows - 1]);
             for (size_t r = 0; r < s->nrows; ++r) ymax = fmax(ymax, fmax(len[r], wid[r]));
         } else {
@@ -354,15 +359,7 @@ static void plot_compare(const result *res, const char *png, int *failures) {
         free(len);
         free(wid);
     }
-    const double marks[2] = {T_EXPERIMENT, T_SEED_SIM};
-    const char *mnames[2] = {"experiment 11.72 s", "seed's simulation 14.0 s"};
-    for (int k = 0; k < 2 && ok; ++k) {
-        if (marks[k] > 1.3 * tmax) continue;
-        const double xs[2] = {marks[k], marks[k]}, ys[2] = {0, ymax};
-        ry_plot_style st = ry_plot_style_line();
-        st.dash = (ry_plot_dash)(k + 2);
-        ry_plot_series(p, 0, mnames[k], 2, xs, ys, st, &err);
-    }
+    if (ok) detachment_marks(p, -1, tmax, ymax);
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
     ry_plot_legend(p, 1, RY_PLOT_LEGEND_NW, &err);
     if (!ok || ry_plot_write_png(p, png, &err) != RY_OK) {

@@ -35,10 +35,8 @@ void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, const 
             const size_t q1 = row_end ? row_end[i] : sim->nl.offset[i + 1];
             if (dim == 3)
                 collide_row(sim, i, q0, q1, nj, rc2, f, s, 3);
-            else if (dim == 2)
-                collide_row(sim, i, q0, q1, nj, rc2, f, s, 2);
             else
-                collide_row(sim, i, q0, q1, nj, rc2, f, s, dim);
+                collide_row(sim, i, q0, q1, nj, rc2, f, s, 2);
         }
         for (int d = 0; d < dim; ++d) dv[dim * i + d] = s[d];
     }

@@ -5,6 +5,7 @@
 
 #include "core/writer.h"
 #include "ryushi/sim.h"
+#include "ryushi/validate.h"
 #include "core/guard_check.h"
 
 /* A checkpoint due after this step by the case's policy: 1 on the simulated schedule
@@ -16,16 +17,10 @@ static int checkpoint_due(ry_sim *sim, double eps) {
     return k->wall_interval > 0 && ry_wall_time() - k->last_wall >= k->wall_interval ? 2 : 0;
 }
 
-/* The largest particle speed (over all ranks), for a diagnosis. */
+/* The largest fluid speed (over all ranks), for a diagnosis. */
 static double largest_speed(ry_sim *sim) {
-    const ry_particles *ps = &sim->ps;
-    double v2 = 0;
-    for (size_t i = 0; i < ps->n; ++i) {
-        double s = 0;
-        for (int d = 0; d < sim->dim; ++d) s += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
-        v2 = fmax(v2, s);
-    }
-    return sim->par ? sim->par->max(sim, sqrt(v2)) : sqrt(v2);
+    const double v = ry_band_max_speed(sim, 0, -INFINITY, INFINITY);
+    return sim->par ? sim->par->max(sim, v) : v;
 }
 
 /* On instability: the last good state goes to disk (VTK and checkpoint), named in the message. */

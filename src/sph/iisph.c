@@ -381,10 +381,8 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
         double *a = acc + 3 * i;
         if (dim == 3)
             force_row(sim, s, i, vg, a, 3);
-        else if (dim == 2)
-            force_row(sim, s, i, vg, a, 2);
         else
-            force_row(sim, s, i, vg, a, dim);
+            force_row(sim, s, i, vg, a, 2);
     }
     return RY_OK;
 }
@@ -683,10 +681,8 @@ static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
         double *out = s->sum + 3 * i;
         if (dim == 3)
             pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, 3);
-        else if (dim == 2)
-            pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, 2);
         else
-            pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, dim);
+            pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, 2);
     }
 }
 
