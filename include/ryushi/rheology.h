@@ -65,13 +65,16 @@ void ry_tau_index(int dim, int k, int *a, int *b);
 const char *ry_tau_name(int dim, int k);
 /* One step of a visco-elastic model's stress equation at a particle of density rho, tau
  * (ry_tau_count components) in place:
- * tau' = (tau + dt (L tau + tau L^T - (alpha / eta_p) tau . tau + 2 eta_p D / lambda))
- *        / (1 + dt / lambda),
- * with L the velocity gradient (3 x 3 row-major, L_ab = du_a/dx_b), D its symmetric part,
- * eta_p = rho nu_p the polymer's dynamic viscosity and alpha 0 for Oldroyd-B: the
- * upper-convected and quadratic terms explicit and the relaxation implicit, so that the update
- * is stable for any dt against lambda. Where the quadratic term's rate alpha |tau| / eta_p
- * exceeds 1/(4 dt), the step is taken in as many equal parts as keep it below. */
+ * (1 + th dt/lambda - dt/2 K) tau' = (1 - (1 - th) dt/lambda + dt/2 K) tau
+ *                                      + dt (2 eta_p D / lambda - (alpha / eta_p) tau . tau),
+ * K tau = L tau + tau L^T, with L the velocity gradient (3 x 3 row-major, L_ab = du_a/dx_b), D
+ * its symmetric part, eta_p = rho nu_p the polymer's dynamic viscosity and alpha 0 for
+ * Oldroyd-B: the upper-convected term at the midpoint (a rotation turns the stress without
+ * stretching it), the relaxation at the midpoint too where dt <= lambda and towards implicit
+ * beyond (th = max(1/2, 1 - lambda/(2 dt)): stable, and not oscillating, for any dt against
+ * lambda), the quadratic term explicit. A steady state of the model is one of the step. Where dt
+ * |L| exceeds 1, or the quadratic term's rate alpha |tau| / eta_p exceeds 1/(4 dt), the step is
+ * taken in as many equal parts as keep both below. */
 void ry_polymer_step(int dim, const ry_rheology *r, const double L[9], double rho, double dt,
                      double *tau);
 

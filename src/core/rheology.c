@@ -125,11 +125,60 @@ const char *ry_tau_name(int dim, int k) {
     return names[dim == 2 && k == 2 ? 3 : k];
 }
 
-/* One explicit step of the stress equation (ry_polymer_step) with mobility a (0: Oldroyd-B). */
+/* Index of the stored component of tau_pq (p, q < dim). */
+static int tau_component(int dim, int p, int q) {
+    if (p == q) return p;
+    const int lo = p < q ? p : q, hi = p < q ? q : p;
+    if (dim == 2) return 2;
+    return lo == 0 ? 2 + hi : 5; /* xy 3, xz 4, yz 5 */
+}
+
+/* Solves the n x n system A x = b (row-major, n <= 6) by elimination with partial pivoting;
+ * A and b are overwritten. Returns 0 if a pivot is not positive and finite in size. */
+static int solve_small(int n, double *A, double *b) {
+    for (int c = 0; c < n; ++c) {
+        int piv = c;
+        for (int r = c + 1; r < n; ++r)
+            if (fabs(A[r * n + c]) > fabs(A[piv * n + c])) piv = r;
+        if (!(fabs(A[piv * n + c]) > 0) || !isfinite(A[piv * n + c])) return 0;
+        if (piv != c) {
+            for (int k = 0; k < n; ++k) {
+                const double t = A[c * n + k];
+                A[c * n + k] = A[piv * n + k];
+                A[piv * n + k] = t;
+            }
+            const double t = b[c];
+            b[c] = b[piv];
+            b[piv] = t;
+        }
+        for (int r = c + 1; r < n; ++r) {
+            const double f = A[r * n + c] / A[c * n + c];
+            for (int k = c; k < n; ++k) A[r * n + k] -= f * A[c * n + k];
+            b[r] -= f * b[c];
+        }
+    }
+    for (int r = n - 1; r >= 0; --r) {
+        double s = b[r];
+        for (int k = r + 1; k < n; ++k) s -= A[r * n + k] * b[k];
+        b[r] = s / A[r * n + r];
+    }
+    return 1;
+}
+
+/* One step of the stress equation (ry_polymer_step) with mobility a (0: Oldroyd-B). The
+ * upper-convected term K tau = L tau + tau L^T and the relaxation are taken at the midpoint
+ * (Crank-Nicolson; the relaxation's weight th moves towards implicit where dt exceeds lambda,
+ * so that its factor stays positive), the quadratic term explicit:
+ *   (1 + th dt/lambda - dt/2 K) tau' = (1 - (1 - th) dt/lambda + dt/2 K) tau
+ *                                      + dt (2 eta_p D / lambda - a/eta_p tau . tau).
+ * A steady state of the equation is one of the step; a rotation (L antisymmetric) turns tau
+ * without stretching it, where an explicit term multiplied its size by sqrt(1 + (dt omega)^2)
+ * every step. */
 static void polymer_substep(int dim, const double L[9], double eta_p, double lambda, double a,
                             double dt, double *tau) {
     const int nt = ry_tau_count(dim);
-    double t[3][3] = {{0}};
+    const double th = fmax(0.5, 1.0 - 0.5 * lambda / dt);
+    double t[3][3] = {{0}}, K[36] = {0}, A[36], b[6];
     for (int k = 0; k < nt; ++k) {
         int p, q;
         ry_tau_index(dim, k, &p, &q);
@@ -138,32 +187,41 @@ static void polymer_substep(int dim, const double L[9], double eta_p, double lam
     for (int k = 0; k < nt; ++k) {
         int p, q;
         ry_tau_index(dim, k, &p, &q);
-        double up = 0, tt = 0; /* (L tau + tau L^T)_pq and (tau . tau)_pq */
+        /* (L tau + tau L^T)_pq = sum_c L_pc tau_cq + tau_pc L_qc */
         for (int c = 0; c < dim; ++c) {
-            up += L[3 * p + c] * t[c][q] + t[p][c] * L[3 * q + c];
-            tt += t[p][c] * t[c][q];
+            K[k * nt + tau_component(dim, c, q)] += L[3 * p + c];
+            K[k * nt + tau_component(dim, p, c)] += L[3 * q + c];
         }
-        if (a > 0) up -= a / eta_p * tt;
+        double kt = 0, tt = 0; /* (K tau)_pq and (tau . tau)_pq */
+        for (int m = 0; m < nt; ++m) kt += K[k * nt + m] * tau[m];
+        for (int c = 0; c < dim; ++c) tt += t[p][c] * t[c][q];
         const double dpq = 0.5 * (L[3 * p + q] + L[3 * q + p]);
-        tau[k] = (t[p][q] + dt * (up + 2.0 * eta_p * dpq / lambda)) / (1.0 + dt / lambda);
+        b[k] = (1.0 - (1.0 - th) * dt / lambda) * tau[k] +
+               dt * (0.5 * kt + 2.0 * eta_p * dpq / lambda - (a > 0 ? a / eta_p * tt : 0));
     }
+    for (int k = 0; k < nt; ++k)
+        for (int m = 0; m < nt; ++m)
+            A[k * nt + m] = (k == m ? 1.0 + th * dt / lambda : 0.0) - 0.5 * dt * K[k * nt + m];
+    if (solve_small(nt, A, b))
+        for (int k = 0; k < nt; ++k) tau[k] = b[k];
 }
 
 void ry_polymer_step(int dim, const ry_rheology *r, const double L[9], double rho, double dt,
                      double *tau) {
     const double eta_p = rho * r->nu_polymer;
     const double a = r->model == RY_RHEO_GIESEKUS && eta_p > 0 ? r->mobility : 0.0;
-    int parts = 1;
-    if (a > 0) {
-        double n2 = 0; /* |tau|^2, the off-diagonal components twice */
-        for (int k = 0; k < ry_tau_count(dim); ++k) {
-            int p, q;
-            ry_tau_index(dim, k, &p, &q);
-            n2 += (p == q ? 1.0 : 2.0) * tau[k] * tau[k];
-        }
-        const double x = 4.0 * dt * a * sqrt(n2) / eta_p;
-        parts = x > 1 ? (int)fmin(ceil(x), 1000.0) : 1;
+    /* Parts: dt |L| <= 1 keeps the matrix of the step regular (|dt/2 K| <= dt |L|_F <= 1 against
+     * the diagonal 1 + th dt/lambda), and dt alpha |tau| / eta_p <= 1/4 the quadratic term's
+     * explicit part stable. */
+    double l2 = 0, n2 = 0; /* |L|_F^2 and |tau|^2 (the off-diagonal components twice) */
+    for (int k = 0; k < 9; ++k) l2 += L[k] * L[k];
+    for (int k = 0; a > 0 && k < ry_tau_count(dim); ++k) {
+        int p, q;
+        ry_tau_index(dim, k, &p, &q);
+        n2 += (p == q ? 1.0 : 2.0) * tau[k] * tau[k];
     }
+    const double x = fmax(dt * sqrt(l2), a > 0 ? 4.0 * dt * a * sqrt(n2) / eta_p : 0.0);
+    const int parts = x > 1 ? (int)fmin(ceil(x), 1000.0) : 1;
     for (int s = 0; s < parts; ++s)
         polymer_substep(dim, L, eta_p, r->relaxation, a, dt / parts, tau);
 }

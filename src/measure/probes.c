@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "ryushi/mps.h"
+#include "ryushi/rheology.h"
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
 #include "sph/iisph.h"
@@ -33,6 +34,32 @@ static ry_status probe_max_speed(const ry_sim *sim, double *v, ry_error *err) {
         double u2 = 0;
         for (int d = 0; d < sim->dim; ++d) u2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
         m = fmax(m, u2);
+    }
+    *v = sqrt(m);
+    return RY_OK;
+}
+
+/* The largest size of the polymer stress, |tau| = sqrt(tau : tau), over the fluid. */
+static ry_status probe_max_polymer_stress(const ry_sim *sim, double *v, ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    const int nt = ry_tau_count(sim->dim);
+    int f[6];
+    for (int k = 0; k < nt; ++k) {
+        f[k] = ry_particles_field(ps, ry_tau_name(sim->dim, k));
+        RY_CHECK(err, f[k] >= 0, RY_ERR_INPUT,
+                 "measurement 'max_polymer_stress' needs a visco-elastic material (rheology "
+                 "model oldroyd_b or giesekus)");
+    }
+    double m = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        double t2 = 0;
+        for (int k = 0; k < nt; ++k) {
+            int a, b;
+            ry_tau_index(sim->dim, k, &a, &b);
+            t2 += (a == b ? 1.0 : 2.0) * ps->f[f[k]][i] * ps->f[f[k]][i];
+        }
+        m = fmax(m, t2);
     }
     *v = sqrt(m);
     return RY_OK;
@@ -446,6 +473,9 @@ static const ry_probe p_nfluid = {"fluid_particles", "number of fluid particles"
                                   probe_fluid_particles};
 static const ry_probe p_kin = {"kinetic_energy", "fluid kinetic energy [J]", probe_kinetic};
 static const ry_probe p_vmax = {"max_speed", "largest fluid speed [m/s]", probe_max_speed};
+static const ry_probe p_tau_max = {
+    "max_polymer_stress", "largest size of the polymer stress sqrt(tau : tau) over the fluid [Pa]",
+    probe_max_polymer_stress};
 static const ry_probe p_out = {"outside", "particles outside the domain", probe_outside};
 static const ry_probe p_front = {"front_x", "surge front position [m] (leading edge on the floor)",
                                  probe_front_x};
@@ -504,6 +534,7 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_iters_mean,
                                              &p_kin,
                                              &p_vmax,
+                                             &p_tau_max,
                                              &p_out,
                                              &p_front,
                                              &p_in_wall,

@@ -1,5 +1,6 @@
 /* The droplet measurements (case section `droplet`): length, width and aspect ratio of the body
- * of a material attached to a nozzle, and its detachment, on particle sets built by hand. */
+ * of a material attached to a nozzle, and its detachment, on particle sets built by hand; and
+ * the largest polymer stress (`max_polymer_stress`) of the visco-elastic embolic liquid. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -39,16 +40,18 @@ static ry_status setup(ry_sim *sim, ry_case **c, int with_section, ry_error *err
     return ry_sim_setup(sim, *c, tmpdir, err);
 }
 
+static const ry_probe *probe_named(const char *name) {
+    for (const ry_probe *const *p = ry_probes(); *p; ++p)
+        if (strcmp((*p)->name, name) == 0) return *p;
+    fail_msg("no probe %s", name);
+    return NULL;
+}
+
 static double eval(const ry_sim *sim, const char *name) {
     ry_error err = {0};
-    for (const ry_probe *const *p = ry_probes(); *p; ++p)
-        if (strcmp((*p)->name, name) == 0) {
-            double v = -1;
-            assert_int_equal((*p)->eval(sim, &v, &err), RY_OK);
-            return v;
-        }
-    fail_msg("no probe %s", name);
-    return NAN;
+    double v = -1;
+    assert_int_equal(probe_named(name)->eval(sim, &v, &err), RY_OK);
+    return v;
 }
 
 static void test_attached_and_detached(void **state) {
@@ -140,11 +143,39 @@ static void test_needs_the_section(void **state) {
     ry_case_free(c);
 }
 
+/* max_polymer_stress: sqrt(tau : tau), the off-diagonal component counted twice, largest over
+ * the fluid; refused without the stress fields. */
+static void test_polymer_stress(void **state) {
+    (void)state;
+    ry_sim sim;
+    ry_case *c = NULL;
+    ry_error err = {0};
+    assert_int_equal(setup(&sim, &c, 0, &err), RY_OK);
+    double v = -1;
+    assert_int_equal(probe_named("max_polymer_stress")->eval(&sim, &v, &err), RY_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "visco-elastic"));
+    int f[3];
+    const char *names[3] = {"tau_xx", "tau_yy", "tau_xy"};
+    for (int k = 0; k < 3; ++k)
+        assert_int_equal(ry_particles_add_field(&sim.ps, names[k], "Pa", -1, 0, &f[k], &err),
+                         RY_OK);
+    assert_float_equal(eval(&sim, "max_polymer_stress"), 0.0, 0.0);
+    /* (3, 4, 6): sqrt(9 + 16 + 2 x 36) = sqrt(97) */
+    sim.ps.f[f[0]][5] = 3;
+    sim.ps.f[f[1]][5] = 4;
+    sim.ps.f[f[2]][5] = -6;
+    sim.ps.f[f[0]][7] = 9;
+    assert_float_equal(eval(&sim, "max_polymer_stress"), sqrt(97.0), 1e-12);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_attached_and_detached),
         cmocka_unit_test(test_axis_from_the_case),
         cmocka_unit_test(test_needs_the_section),
+        cmocka_unit_test(test_polymer_stress),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
