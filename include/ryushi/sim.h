@@ -133,7 +133,8 @@ typedef struct ry_open_boundary {
     double velocity[3];  /* inlet velocity [m/s] */
     double pressure;     /* outlet pressure [Pa] */
     int material;
-    long count; /* inlet: particles turned fluid; outlet: particles removed */
+    long count; /* inlet: particles turned fluid, less the fluid pushed back into the zone and
+                   removed; outlet: particles removed */
 } ry_open_boundary;
 
 /* Limits that stop a run as unstable (case section `guard`); 0 disables a limit. */

@@ -232,6 +232,18 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 b->count++;
                 break;
             }
+            /* Fluid pushed back into an inlet's zone, deeper than half a spacing (a pressure
+             * against the prescribed inflow): returned to the supply, and taken off the inflow.
+             * Left there it would sit among the buffer's particles, or pass through them out of
+             * the zone's far side. */
+            if (b->type == RY_OPEN_INLET && ps->kind[i] == RY_KIND_FLUID &&
+                inside_across(b, x, dim) && past(b, x, downstream) < -0.5 * sim->dx &&
+                past(b, x, upstream) >= -0.5 * sim->dx) {
+                if ((st = mark_removed(&remove, n, i, err)) != RY_OK) goto done;
+                nremove++;
+                b->count--;
+                break;
+            }
             if (b->type != RY_OPEN_OUTLET) continue;
             const int across = inside_across(b, x, dim);
             if (sim->open_sink) { /* fluid past the downstream face is removed, nothing else */

@@ -110,6 +110,14 @@ static void channel_setup(ry_case **c, ry_sim *sim, const char *sub) {
     assert_int_equal(ry_sim_setup(sim, *c, od, &err), RY_OK);
 }
 
+/* The first two fluid particles of the set. */
+static void first_two_fluid(const ry_sim *sim, size_t *a, size_t *b) {
+    *a = *b = sim->ps.n;
+    for (size_t i = 0; i < sim->ps.n && *b == sim->ps.n; ++i)
+        if (sim->ps.kind[i] == RY_KIND_FLUID) *(*a == sim->ps.n ? a : b) = i;
+    assert_true(*b < sim->ps.n);
+}
+
 /* Conversions at the outlet of the same channel (outlet zone x = 0.40..0.42 m): a fluid particle
  * inside the zone becomes an outlet particle; one that goes back upstream of the zone (gravity
  * pulling fluid back from an outlet above it) is fluid again, as is an outlet particle found far
@@ -120,17 +128,8 @@ static void test_outlet_conversions(void **state) {
     ry_sim sim;
     ry_error err = {0};
     channel_setup(&c, &sim, "conversions");
-    size_t a = sim.ps.n, b = sim.ps.n;
-    for (size_t i = 0; i < sim.ps.n; ++i)
-        if (sim.ps.kind[i] == RY_KIND_FLUID) {
-            if (a == sim.ps.n)
-                a = i;
-            else if (b == sim.ps.n) {
-                b = i;
-                break;
-            }
-        }
-    assert_true(b < sim.ps.n);
+    size_t a, b;
+    first_two_fluid(&sim, &a, &b);
     const long long ida = (long long)sim.ps.id[a], idb = (long long)sim.ps.id[b];
     sim.ps.f[RY_F_X][a] = 0.41;
     sim.ps.f[RY_F_Y][a] = 0.05;
@@ -152,6 +151,36 @@ static void test_outlet_conversions(void **state) {
     assert_int_equal(ry_open_update(&sim, &err), RY_OK);
     assert_int_equal(sim.ps.n, n - 1);
     assert_true(ry_open_volume(&sim, RY_OPEN_OUTLET) > 0);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
+/* Fluid pushed back into the same channel's inlet zone (x = -0.02..0, spacing 5 mm): deeper
+ * than half a spacing it is removed and taken off the inflow; within half a spacing of the
+ * downstream face (where particles leave the buffer) it stays fluid. */
+static void test_inlet_backflow(void **state) {
+    (void)state;
+    ry_case *c = NULL;
+    ry_sim sim;
+    ry_error err = {0};
+    channel_setup(&c, &sim, "backflow");
+    size_t a, b;
+    first_two_fluid(&sim, &a, &b);
+    const long long idb = (long long)sim.ps.id[b];
+    const long before = sim.open[0].count;
+    const size_t n = sim.ps.n;
+    sim.ps.f[RY_F_X][a] = -0.0101; /* two spacings into the zone */
+    sim.ps.f[RY_F_Y][a] = 0.0501;
+    sim.ps.f[RY_F_X][b] = -0.002; /* within half a spacing of the face */
+    sim.ps.f[RY_F_Y][b] = 0.0251;
+    assert_int_equal(ry_open_update(&sim, &err), RY_OK);
+    assert_int_equal(sim.ps.n, n - 1);
+    assert_int_equal(sim.open[0].count, before - 1);
+    size_t found = sim.ps.n;
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if ((long long)sim.ps.id[i] == idb) found = i;
+    assert_true(found < sim.ps.n);
+    assert_int_equal(sim.ps.kind[found], RY_KIND_FLUID);
     ry_sim_free(&sim);
     ry_case_free(c);
 }
@@ -252,9 +281,8 @@ int main(void) {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/ryushi_open_XXXXXX");
     if (!mkdtemp(tmpdir)) return 1;
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_outlet_conversions),
-        cmocka_unit_test(test_inlet_flow_rate),
-        cmocka_unit_test(test_list_after_inflow),
+        cmocka_unit_test(test_outlet_conversions), cmocka_unit_test(test_inlet_flow_rate),
+        cmocka_unit_test(test_inlet_backflow),     cmocka_unit_test(test_list_after_inflow),
         cmocka_unit_test(test_channel_poiseuille),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
