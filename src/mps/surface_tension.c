@@ -178,7 +178,10 @@ double ry_st_capillary_dt(const ry_surface_tension *st, const ry_sim *sim) {
     if (st->model == RY_ST_NONE || !(st->sigma > 0)) return INFINITY;
     double rho = INFINITY;
     for (int m = 0; m < sim->nmat; ++m) rho = fmin(rho, sim->mat[m].density);
-    return sqrt(rho * st->l0 * st->l0 * st->l0 / (2 * RY_PI * st->sigma));
+    /* Two liquids (potential model): their interface's tension sigma_ab = 2 sigma (1 -
+     * cross_ratio) may exceed sigma (up to 2 sigma). */
+    const double s = st->sigma * fmax(1.0, 2.0 * (1.0 - st->cross_ratio));
+    return sqrt(rho * st->l0 * st->l0 * st->l0 / (2 * RY_PI * s));
 }
 
 /* The pair (i, j)'s coefficient in st_sums, relative to C for the potential model; for CSF
