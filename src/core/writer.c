@@ -40,6 +40,13 @@ static ry_status csv_append(writer *w, ry_error *err, const char *fmt, ...) {
     }
 }
 
+/* The header line of series.csv, its newline included. */
+static ry_status csv_header(const ry_sim *sim, writer *w, ry_error *err) {
+    RY_TRY(csv_append(w, err, "t,step,dt,particles"));
+    for (int k = 0; k < sim->nprobes; ++k) RY_TRY(csv_append(w, err, ",%s", sim->probes[k]->name));
+    return csv_append(w, err, "\n");
+}
+
 ry_status ry_sim_open_output(ry_sim *sim, ry_case *c, ry_error *err) {
     RY_TRY(ry_mkdir_p(sim->out_dir, err));
     writer *w = calloc(1, sizeof *w);
@@ -48,10 +55,59 @@ ry_status ry_sim_open_output(ry_sim *sim, ry_case *c, ry_error *err) {
     char path[4096];
     snprintf(path, sizeof path, "%s/case_resolved.yaml", sim->out_dir);
     RY_TRY(ry_case_write_resolved(c, path, err));
-    RY_TRY(csv_append(w, err, "t,step,dt,particles"));
-    for (int k = 0; k < sim->nprobes; ++k) RY_TRY(csv_append(w, err, ",%s", sim->probes[k]->name));
-    RY_TRY(csv_append(w, err, "\n"));
-    return RY_OK;
+    return csv_header(sim, w, err);
+}
+
+/* Field k (0-based) of the comma-separated line [p, end): its start and length; 0 if absent. */
+static int csv_field(const char *p, const char *end, int k, const char **at, size_t *len) {
+    for (; k > 0; --k) {
+        const char *c = memchr(p, ',', (size_t)(end - p));
+        if (!c) return 0;
+        p = c + 1;
+    }
+    const char *c = memchr(p, ',', (size_t)(end - p));
+    *at = p;
+    *len = (size_t)((c ? c : end) - p);
+    return 1;
+}
+
+/* A restart whose measurement list differs from the checkpoint's: the rows of the series so far
+ * (old, len bytes) rewritten under this run's header into w, column by name, empty where the
+ * earlier run did not measure. */
+static ry_status csv_remap(const ry_sim *sim, writer *w, const char *old, size_t len,
+                           ry_error *err) {
+    const char *end = old + len, *hend = memchr(old, '\n', len);
+    if (!hend) hend = end;
+    const int ncol = 4 + sim->nprobes;
+    int *from = malloc((size_t)ncol * sizeof *from); /* old column of each new one, -1 none */
+    RY_CHECK(err, from != NULL, RY_ERR_NOMEM, "out of memory");
+    for (int k = 0; k < ncol; ++k) {
+        static const char *const fixed[4] = {"t", "step", "dt", "particles"};
+        const char *name = k < 4 ? fixed[k] : sim->probes[k - 4]->name;
+        from[k] = -1;
+        const char *at;
+        size_t n;
+        for (int o = 0; csv_field(old, hend, o, &at, &n); ++o)
+            if (n == strlen(name) && memcmp(at, name, n) == 0) {
+                from[k] = o;
+                break;
+            }
+    }
+    ry_status st = csv_header(sim, w, err);
+    for (const char *p = hend + (hend < end); st == RY_OK && p < end;) {
+        const char *e = memchr(p, '\n', (size_t)(end - p));
+        if (!e) e = end;
+        for (int k = 0; st == RY_OK && k < ncol; ++k) {
+            const char *at = "";
+            size_t n = 0;
+            if (from[k] >= 0 && !csv_field(p, e, from[k], &at, &n)) n = 0;
+            st = csv_append(w, err, "%s%.*s", k ? "," : "", (int)n, at);
+        }
+        if (st == RY_OK) st = csv_append(w, err, "\n");
+        p = e + 1;
+    }
+    free(from);
+    return st;
 }
 
 void ry_writer_free(ry_sim *sim) {
@@ -174,9 +230,20 @@ ry_status ry_writer_load(ry_sim *sim, const ry_ck_reader *ck, ry_error *err) {
     w->files = files;
     w->times = times;
     w->n = w->cap = n;
-    w->csv = csv;
-    w->csv_len = csv_len;
-    w->csv_cap = csv_len + 1;
+    w->csv = NULL;
+    w->csv_len = w->csv_cap = 0;
+    RY_TRY(csv_header(sim, w, err));
+    if (csv_len >= w->csv_len && memcmp(csv, w->csv, w->csv_len) == 0) {
+        free(w->csv); /* the same measurements: the series as it was */
+        w->csv = csv;
+        w->csv_len = csv_len;
+        w->csv_cap = csv_len + 1;
+    } else {
+        w->csv_len = 0;
+        st = csv_remap(sim, w, csv, csv_len, err);
+        free(csv);
+        RY_TRY(st);
+    }
     char path[4096];
     if (n > 0) {
         snprintf(path, sizeof path, "%s/%s.pvd", sim->out_dir, sim->case_name);

@@ -180,5 +180,24 @@ run dropp "$DROP" $DSET --threads 2 --set time.max_steps=37
 "$RY" run "$DROP" $DSET --threads 1 --restart "$T/dropp" > "$T/dropp2.log" 2>&1 || bad "MPS restart failed: $(cat "$T/dropp2.log")"
 same "$T/drop" "$T/dropp" "MPS drop restarted at step 37"
 
+# 11. A restart with another measurement list: the series keeps one header, this run's; the
+# earlier rows are carried over column by name, empty where that run did not measure.
+# shellcheck disable=SC2086
+run meas "$DAM" $DAMSET --threads 1 --set time.max_steps=700
+# shellcheck disable=SC2086
+"$RY" run "$DAM" $DAMSET --threads 1 --restart "$T/meas" --set "measure=[max_speed, mass, fluid_particles]" \
+    > "$T/meas2.log" 2>&1 || bad "restart with other measurements failed: $(cat "$T/meas2.log")"
+hdr=$(head -1 "$T/meas/series.csv")
+[ "$hdr" = "t,step,dt,particles,max_speed,mass,fluid_particles" ] || bad "series header after the restart: $hdr"
+# every row has 7 fields; the first rows carry the uninterrupted run's max_speed and mass, and
+# no fluid_particles; the last rows have all three
+awk -F, 'NF != 7 { exit 1 }' "$T/meas/series.csv" || bad "series rows of another width after the restart"
+want=$(awk -F, 'NR == 3 { print $1 "," $8 "," $6 "," }' "$T/full/series.csv")
+got=$(awk -F, 'NR == 3 { print $1 "," $5 "," $6 "," $7 }' "$T/meas/series.csv")
+[ "$got" = "$want" ] || bad "first row after the restart: $got, want $want (max_speed, mass, none)"
+last=$(tail -1 "$T/meas/series.csv" | awk -F, '{ print ($7 > 0) }')
+[ "$last" = 1 ] || bad "last row without fluid_particles: $(tail -1 "$T/meas/series.csv")"
+ok
+
 printf "restart tests: "
 finish
