@@ -117,8 +117,7 @@ static inline int ry_st_pressure_form(const ry_surface_tension *st) {
 }
 
 /* Capillary-wave limit of the time step (Brackbill et al. 1992), sqrt(rho l0^3 / (2 pi sigma))
- * with the least density of the materials, and sigma the larger of the free surface's and (two
- * liquids, potential model) the interface's; INFINITY without surface tension. */
+ * with the least density of the materials; INFINITY without surface tension. */
 double ry_st_capillary_dt(const ry_surface_tension *st, const ry_sim *sim);
 
 /* Potential model (seed eq. 10 and 12): the inter-particle force f(r) = (r - l0)(r - re) and

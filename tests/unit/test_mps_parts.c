@@ -16,7 +16,6 @@
 
 #include "mps/sparse.h"
 #include "ryushi/mps.h"
-#include "ryushi/sim.h"
 #include "ryushi/surface_tension.h"
 
 static void assert_rel(double got, double want, double tol, const char *what) {
@@ -83,27 +82,6 @@ static void test_potential_coefficient_3d(void **state) {
     assert_rel(ry_st_potential_pair_sum(3, l0, re), sum, 1e-12, "pair sum (3D)");
     assert_rel(ry_st_potential_coefficient(3, l0, re, sigma), 2 * sigma * l0 * l0 / sum, 1e-12,
                "C (3D)");
-}
-
-/* The capillary limit of the step, sqrt(rho l0^3 / (2 pi sigma)) with the least density: for
- * two liquids of the potential model, with the larger of sigma and the interfacial sigma_ab. */
-static void test_capillary_dt(void **state) {
-    (void)state;
-    const double l0 = 2e-4, re = 3.1 * l0, sigma = 5.4e-3, pi = 3.14159265358979323846;
-    ry_material mat[2] = {{.density = 1182}, {.density = 1000}};
-    ry_sim sim;
-    memset(&sim, 0, sizeof sim);
-    sim.nmat = 2;
-    sim.mat = mat;
-    ry_surface_tension st;
-    ry_error err = {0};
-    assert_int_equal(ry_st_setup(&st, RY_ST_POTENTIAL, 3, l0, re, sigma, &err), RY_OK);
-    const double free_dt = sqrt(1000 * l0 * l0 * l0 / (2 * pi * sigma));
-    assert_rel(ry_st_capillary_dt(&st, &sim), free_dt, 1e-12, "one liquid");
-    st.cross_ratio = 1.0 - 0.5 * sigma / (2.0 * sigma); /* sigma_ab = sigma / 2: sigma rules */
-    assert_rel(ry_st_capillary_dt(&st, &sim), free_dt, 1e-12, "sigma_ab < sigma");
-    st.cross_ratio = 0.0; /* sigma_ab = 2 sigma, the embolization case's */
-    assert_rel(ry_st_capillary_dt(&st, &sim), free_dt / sqrt(2.0), 1e-12, "sigma_ab = 2 sigma");
 }
 
 /* The force is minus the derivative of the potential (eq. 10 and 12), zero at r = l0. */
@@ -344,7 +322,6 @@ int main(void) {
         cmocka_unit_test(test_potential_coefficient_2d),
         cmocka_unit_test(test_potential_coefficient_3d),
         cmocka_unit_test(test_potential_force_is_derivative),
-        cmocka_unit_test(test_capillary_dt),
         cmocka_unit_test(test_csf_lattice),
         cmocka_unit_test(test_pcg_poisson_1d),
         cmocka_unit_test(test_pcg_multi_as_single),
