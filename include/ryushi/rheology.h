@@ -63,6 +63,8 @@ double ry_rheology_shear_nu(const ry_rheology *r, double nu_newtonian, double gd
 int ry_tau_count(int dim);
 void ry_tau_index(int dim, int k, int *a, int *b);
 const char *ry_tau_name(int dim, int k);
+/* |tau|^2 = tau : tau of the stored components (the off-diagonal ones counted twice). */
+double ry_tau_norm2(int dim, const double *tau);
 /* One step of a visco-elastic model's stress equation at a particle of density rho, tau
  * (ry_tau_count components) in place:
  * (1 + th dt/lambda - dt/2 K) tau' = (1 - (1 - th) dt/lambda + dt/2 K) tau

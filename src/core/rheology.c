@@ -125,6 +125,16 @@ const char *ry_tau_name(int dim, int k) {
     return names[dim == 2 && k == 2 ? 3 : k];
 }
 
+double ry_tau_norm2(int dim, const double *tau) {
+    double n2 = 0;
+    for (int k = 0; k < ry_tau_count(dim); ++k) {
+        int p, q;
+        ry_tau_index(dim, k, &p, &q);
+        n2 += (p == q ? 1.0 : 2.0) * tau[k] * tau[k];
+    }
+    return n2;
+}
+
 /* Index of the stored component of tau_pq (p, q < dim). */
 static int tau_component(int dim, int p, int q) {
     if (p == q) return p;
@@ -174,11 +184,11 @@ static int solve_small(int n, double *A, double *b) {
  * A steady state of the equation is one of the step; a rotation (L antisymmetric) turns tau
  * without stretching it, where an explicit term multiplied its size by sqrt(1 + (dt omega)^2)
  * every step. */
-static void polymer_substep(int dim, const double L[9], double eta_p, double lambda, double a,
-                            double dt, double *tau) {
+static void polymer_substep(int dim, const double L[9], const double *K, double eta_p,
+                            double lambda, double a, double dt, double *tau) {
     const int nt = ry_tau_count(dim);
     const double th = fmax(0.5, 1.0 - 0.5 * lambda / dt);
-    double t[3][3] = {{0}}, K[36] = {0}, A[36], b[6];
+    double t[3][3] = {{0}}, A[36], b[6];
     for (int k = 0; k < nt; ++k) {
         int p, q;
         ry_tau_index(dim, k, &p, &q);
@@ -187,21 +197,15 @@ static void polymer_substep(int dim, const double L[9], double eta_p, double lam
     for (int k = 0; k < nt; ++k) {
         int p, q;
         ry_tau_index(dim, k, &p, &q);
-        /* (L tau + tau L^T)_pq = sum_c L_pc tau_cq + tau_pc L_qc */
-        for (int c = 0; c < dim; ++c) {
-            K[k * nt + tau_component(dim, c, q)] += L[3 * p + c];
-            K[k * nt + tau_component(dim, p, c)] += L[3 * q + c];
-        }
         double kt = 0, tt = 0; /* (K tau)_pq and (tau . tau)_pq */
         for (int m = 0; m < nt; ++m) kt += K[k * nt + m] * tau[m];
         for (int c = 0; c < dim; ++c) tt += t[p][c] * t[c][q];
         const double dpq = 0.5 * (L[3 * p + q] + L[3 * q + p]);
         b[k] = (1.0 - (1.0 - th) * dt / lambda) * tau[k] +
                dt * (0.5 * kt + 2.0 * eta_p * dpq / lambda - (a > 0 ? a / eta_p * tt : 0));
-    }
-    for (int k = 0; k < nt; ++k)
         for (int m = 0; m < nt; ++m)
             A[k * nt + m] = (k == m ? 1.0 + th * dt / lambda : 0.0) - 0.5 * dt * K[k * nt + m];
+    }
     if (solve_small(nt, A, b))
         for (int k = 0; k < nt; ++k) tau[k] = b[k];
 }
@@ -210,18 +214,26 @@ void ry_polymer_step(int dim, const ry_rheology *r, const double L[9], double rh
                      double *tau) {
     const double eta_p = rho * r->nu_polymer;
     const double a = r->model == RY_RHEO_GIESEKUS && eta_p > 0 ? r->mobility : 0.0;
+    const int nt = ry_tau_count(dim);
+    /* K tau = L tau + tau L^T on the stored components: (K tau)_pq = sum_c L_pc tau_cq +
+     * tau_pc L_qc. It holds for every part of the step. */
+    double K[36] = {0};
+    for (int k = 0; k < nt; ++k) {
+        int p, q;
+        ry_tau_index(dim, k, &p, &q);
+        for (int c = 0; c < dim; ++c) {
+            K[k * nt + tau_component(dim, c, q)] += L[3 * p + c];
+            K[k * nt + tau_component(dim, p, c)] += L[3 * q + c];
+        }
+    }
     /* Parts: dt |L| <= 1 keeps the matrix of the step regular (|dt/2 K| <= dt |L|_F <= 1 against
      * the diagonal 1 + th dt/lambda), and dt alpha |tau| / eta_p <= 1/4 the quadratic term's
      * explicit part stable. */
-    double l2 = 0, n2 = 0; /* |L|_F^2 and |tau|^2 (the off-diagonal components twice) */
+    double l2 = 0; /* |L|_F^2 */
     for (int k = 0; k < 9; ++k) l2 += L[k] * L[k];
-    for (int k = 0; a > 0 && k < ry_tau_count(dim); ++k) {
-        int p, q;
-        ry_tau_index(dim, k, &p, &q);
-        n2 += (p == q ? 1.0 : 2.0) * tau[k] * tau[k];
-    }
-    const double x = fmax(dt * sqrt(l2), a > 0 ? 4.0 * dt * a * sqrt(n2) / eta_p : 0.0);
+    const double x =
+        fmax(dt * sqrt(l2), a > 0 ? 4.0 * dt * a * sqrt(ry_tau_norm2(dim, tau)) / eta_p : 0.0);
     const int parts = x > 1 ? (int)fmin(ceil(x), 1000.0) : 1;
     for (int s = 0; s < parts; ++s)
-        polymer_substep(dim, L, eta_p, r->relaxation, a, dt / parts, tau);
+        polymer_substep(dim, L, K, eta_p, r->relaxation, a, dt / parts, tau);
 }

@@ -53,13 +53,9 @@ static ry_status probe_max_polymer_stress(const ry_sim *sim, double *v, ry_error
     double m = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
-        double t2 = 0;
-        for (int k = 0; k < nt; ++k) {
-            int a, b;
-            ry_tau_index(sim->dim, k, &a, &b);
-            t2 += (a == b ? 1.0 : 2.0) * ps->f[f[k]][i] * ps->f[f[k]][i];
-        }
-        m = fmax(m, t2);
+        double t[6];
+        for (int k = 0; k < nt; ++k) t[k] = ps->f[f[k]][i];
+        m = fmax(m, ry_tau_norm2(sim->dim, t));
     }
     *v = sqrt(m);
     return RY_OK;
