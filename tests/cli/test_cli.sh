@@ -51,6 +51,21 @@ ls "$T/run" | grep -q "tmp" && bad "temporary files left in the output" || ok
     | grep -q "Giesekus: solvent nu 0.0001, polymer nu 0.0009 m^2/s, lambda 0.005 s, alpha 0.3" \
     && ok || bad "info does not report the Giesekus material"
 
+# A body that skips its overlaps leaves out the particles half a spacing off an earlier body's
+# lattice, which would double the density there: 100 of the second box's 200 stay.
+cat > "$T/half.yaml" <<'EOF'
+dimension: 2
+spacing: 0.01
+materials: [{name: water, density: 1000}]
+bodies:
+  - {type: box, lo: [0, 0], hi: [0.1, 0.1]}
+  - {type: box, lo: [0, 0.005], hi: [0.1, 0.205], overlap: skip}
+scheme: {name: static}
+time: {end: 0.1}
+EOF
+"$RY" info "$T/half.yaml" | grep -q "particles *200 " && ok \
+    || bad "overlap skip half a spacing off: $("$RY" info "$T/half.yaml" 2>&1 | grep particles)"
+
 # time.stop_when: the run ends at the first output whose front lies beyond 0.4 m (about 0.14 s),
 # long before time.end, and says so; the rows before it stay below the value.
 "$RY" run "$SRC/cases/dam_break_seed.yaml" -o "$T/stop" --threads 1 --set spacing=0.0125 \
