@@ -193,6 +193,26 @@ static ry_status read_probes(ry_sim *sim, ry_case *c, ry_error *err) {
     return read_stop_when(sim, c, err);
 }
 
+/* Each measurement once on the state set up, so that one the case cannot give (a polymer stress
+ * without a visco-elastic material, a scheme's iterations under another scheme) stops the
+ * set-up with the key that names it, before anything is written. */
+static ry_status check_probes(ry_sim *sim, ry_case *c, ry_error *err) {
+    for (int k = 0; k < sim->nprobes; ++k) {
+        double v;
+        const ry_status st = sim->probes[k]->eval(sim, &v, err);
+        if (st != RY_ERR_INPUT) {
+            RY_TRY(st);
+            continue;
+        }
+        char key[64], where[256], msg[RY_ERROR_MSG_MAX];
+        snprintf(key, sizeof key, "measure[%d]", k);
+        snprintf(msg, sizeof msg, "%s", err ? err->msg : "");
+        return ry_error_set(err, RY_ERR_INPUT, "%s: key '%s': %s",
+                            ry_case_where(c, key, where, sizeof where), key, msg);
+    }
+    return RY_OK;
+}
+
 static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {
     const ry_scheme_type *const *all = ry_schemes();
     int count = 0;
@@ -361,6 +381,7 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(ry_case_double(c, "neighbors.skin", &skin, 0.0, 1.0, &sim->nl_skin, err));
     RY_TRY(read_guard(sim, c, err));
     RY_TRY(read_checkpoint(sim, c, err));
+    RY_TRY(check_probes(sim, c, err));
     ry_case_touch(c, "description");
     RY_TRY(ry_case_check_unused(c, err));
     return RY_OK;

@@ -42,6 +42,8 @@ case_ contact_angle_per_liquid_csf 2 ":6: key 'materials[0].contact_angle': a co
 case_ contact_angle_fluid_body 2 ":8: key 'bodies[0].contact_angle': applies to a body of kind wall"
 case_ contact_angle_too_many_sets 2 ":13: key 'bodies[8].contact_angle': at most 7 different sets of contact angles on wall bodies"
 case_ thin_fluid_body 2 ":8: key 'bodies[0].thin': applies to a body of kind wall"
+case_ measure_polymer_stress_newtonian 2 ":7: key 'measure[1]': measurement 'max_polymer_stress' needs a visco-elastic material (rheology model oldroyd_b or giesekus)"
+case_ measure_droplet_without_section 2 ":8: key 'measure[1]': the droplet measurements need the case section 'droplet' (material, tip)"
 case_ stop_when_not_measured 2 ":9: key 'time.stop_when.quantity': 'front_x' is not measured (add it to 'measure')"
 case_ stop_when_no_bound 2 ":9: key 'time.stop_when' needs one of 'above' and 'below'"
 case_ iisph_surface_threshold_potential 2 ":9: key 'surface_tension.surface_threshold': applies to model csf with csf_form: pressure only"
