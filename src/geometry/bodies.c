@@ -222,6 +222,7 @@ static ry_status check_overlaps(ry_particles *ps, ry_case *c, const uint32_t *bo
     size_t hit = SIZE_MAX, other = 0;
     for (size_t a = 0; a < n; ++a) {
         size_t i = r[a].i;
+        const double lim = skip[body[i]] ? half_skip : half;
         for (int ox = -1; ox <= 1; ++ox)
             for (int oy = -1; oy <= 1; ++oy)
                 for (int oz = -dz; oz <= dz; ++oz) {
@@ -231,7 +232,6 @@ static ry_status check_overlaps(ry_particles *ps, ry_case *c, const uint32_t *bo
                         size_t j = r[b].i;
                         if (body[j] >= body[i] || i >= hit) continue;
                         int near = 1;
-                        const double lim = skip[body[i]] ? half_skip : half;
                         for (int d = 0; d < ps->dim; ++d)
                             near &= fabs(ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j]) < lim;
                         if (near && skip[body[i]]) {
