@@ -54,6 +54,8 @@ typedef struct mps {
     int clamp;             /* negative pressures set to zero */
     int pmin_on;           /* gradient with the neighbourhood's least pressure (eq. 5) */
     int wall_extrapolate;  /* wall pressure for the gradient extrapolated from the fluid */
+    int thin_neumann;      /* thin walls stay out of the pressure equation (Neumann) */
+    int inlet_closed;      /* inflow buffers are never free surface (a piston) */
     double coll_r, coll_e; /* artificial repulsion: distance, restitution */
     int dilate;            /* number-density source also for n* < n0 (else compression only) */
     ry_surface_tension st;
@@ -125,6 +127,7 @@ static const char *const source_names[] = {"tanaka_masunaga", "number_density", 
 static const char *const visc_names[] = {"explicit", "implicit", "none", "mixed", NULL};
 static const char *const grad_names[] = {"corrected", "standard", NULL};
 static const char *const surface_pressure_names[] = {"zero", "hydrostatic", NULL};
+static const char *const thin_pressure_names[] = {"unknown", "neumann", NULL};
 static const char *const wall_velocity_names[] = {"own", "mirrored", "slip", NULL};
 enum { WALLV_OWN, WALLV_MIRRORED, WALLV_SLIP };
 
@@ -372,6 +375,11 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_case_double(c, "scheme.repulsion.restitution", &ce, 0.0, 1.0, &M->coll_e, err));
     M->coll_r *= l0;
     RY_TRY(ry_case_bool(c, "scheme.wall_extrapolation", &yes, &M->wall_extrapolate, err));
+    RY_TRY(ry_case_choice(c, "scheme.thin_wall_pressure", "neumann", thin_pressure_names,
+                          &M->thin_neumann, err));
+    int inlet_surface = 0;
+    RY_TRY(ry_case_bool(c, "scheme.inlet_free_surface", &no, &inlet_surface, err));
+    M->inlet_closed = !inlet_surface;
     RY_TRY(ry_case_bool(c, "scheme.thin_wall_cut", &yes, &M->thin_cut_on, err));
     const long three = 3;
     long layers;
@@ -971,9 +979,10 @@ static void number_density(ry_sim *sim, mps *M) {
                 M->role[i] = nd[i] < M->beta ? ROLE_SURFACE : ROLE_FLUID;
             } else {
                 const int thin = M->thin && M->thin[i] >= 0;
-                M->role[i] = !fluid_near                ? ROLE_DUMMY
-                             : nd[i] < M->beta && !thin ? ROLE_SURFACE
-                                                        : ROLE_WALL;
+                const int closed = thin || (M->inlet_closed && ps->kind[i] == RY_KIND_INLET);
+                M->role[i] = !fluid_near                  ? ROLE_DUMMY
+                             : nd[i] < M->beta && !closed ? ROLE_SURFACE
+                                                          : ROLE_WALL;
             }
             surf[i] = M->role[i] == ROLE_SURFACE && ps->kind[i] == RY_KIND_FLUID;
             /* the source's divergence of u* for the unknowns, while the row's pairs are at
@@ -989,13 +998,18 @@ static void number_density(ry_sim *sim, mps *M) {
 
 /* Kinematic viscosity of a pair (harmonic mean: symmetric, and 0 next to an inviscid fluid).
  * With a shear-rate dependent viscosity each particle has its own value (field f_nu, set by
- * rheology_explicit), and a wall takes the fluid particle's. */
+ * rheology_explicit). A wall takes the fluid particle's: a no-slip wall's shear stress is the
+ * fluid's own. (The mean with the wall body's material, the first one unless the body names
+ * another, would let the embolic liquid slide through a catheter as if it were water.) */
 static inline double nu_mean(double a, double b) {
     return a + b > 0 ? 2.0 * a * b / (a + b) : 0.0;
 }
 static inline double pair_nu(const ry_sim *sim, const mps *M, size_t i, size_t j) {
-    if (!M->rheo_gnf) /* the materials' pairs, computed once (rheology_init) */
-        return M->nu_pair[(size_t)sim->ps.material[i] * (size_t)sim->nmat + sim->ps.material[j]];
+    if (!M->rheo_gnf) { /* the materials' pairs, computed once (rheology_init) */
+        const size_t a = sim->ps.material[i];
+        const size_t b = sim->ps.kind[j] == RY_KIND_FLUID ? sim->ps.material[j] : a;
+        return M->nu_pair[a * (size_t)sim->nmat + b];
+    }
     const double a = sim->ps.f[M->f_nu][i];
     return nu_mean(a, sim->ps.kind[j] == RY_KIND_FLUID ? sim->ps.f[M->f_nu][j] : a);
 }
@@ -1201,15 +1215,23 @@ static void viscous_explicit(ry_sim *sim, const mps *M) {
     }
 }
 
-/* Pressure: pairs between unknowns and free-surface particles (Dirichlet); dummies are left
- * out. */
+/* Whether wall particle i stays out of the pressure equation: a thin wall's one layer has
+ * fluid on both sides, and as an unknown it would carry the pressure from one to the other
+ * (from a catheter's bore to the water around it). Left out, it is a Neumann boundary to the
+ * fluid on either side, and its pressure for the gradient is extrapolated from each side. */
+static inline int thin_out(const mps *M, size_t i) {
+    return M->thin_neumann && M->thin && M->thin[i] >= 0;
+}
+
+/* Pressure: pairs between unknowns and free-surface particles (Dirichlet); dummies and thin
+ * walls (thin_out) are left out. */
 static int couple_pressure(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
                            double dt) {
     (void)sim;
     (void)i;
     (void)dt;
     *coef = 1.0;
-    return M->role[j] != ROLE_DUMMY;
+    return M->role[j] != ROLE_DUMMY && !thin_out(M, j);
 }
 
 /* Viscosity: every pair; walls are known velocities. */
@@ -1396,7 +1418,7 @@ static inline const double *thin_normal(const mps *M, size_t i) {
 /* The pressure of neighbour j in the gradient of fluid particle i (dx = x_j - x_i): a thin
  * wall's extrapolated pressure is taken from the fluid on i's side of it. */
 static inline double grad_pressure(const mps *M, const double *p, size_t j, const double *dx) {
-    const double *tn = M->wall_extrapolate ? thin_normal(M, j) : NULL;
+    const double *tn = M->wall_extrapolate || M->thin_neumann ? thin_normal(M, j) : NULL;
     if (!tn) return p[j];
     const int side = tn[0] * dx[0] + tn[1] * dx[1] + tn[2] * dx[2] > 0;
     return M->tpw[2 * j + side];
@@ -1414,7 +1436,7 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         pw[i] = p[i];
-        if (M->role[i] != ROLE_WALL) continue;
+        if (M->role[i] != ROLE_WALL || !(M->wall_extrapolate || thin_out(M, i))) continue;
         double s = 0, sw = 0, ss[2] = {0, 0}, sws[2] = {0, 0};
         const double *tn = thin_normal(M, i);
         for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
@@ -1440,7 +1462,7 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
                 M->tpw[2 * i + side] = sws[side] > 0 ? fmax(ss[side] / sws[side], 0.0) : pw[i];
     }
     for (size_t i = 0; i < n; ++i)
-        if (M->role[i] == ROLE_WALL) ps->f[RY_F_P][i] = pw[i];
+        if (M->role[i] == ROLE_WALL) ps->f[RY_F_P][i] = pw[i]; /* (the others: pw = p) */
 }
 
 /* CSF in pressure form: the Dirichlet value of each surface particle is the Laplace jump
@@ -1545,7 +1567,9 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     const size_t n = ps->n;
     size_t nunk = 0;
     for (size_t i = 0; i < n; ++i)
-        M->unk[i] = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) ? (int32_t)nunk++ : -1;
+        M->unk[i] = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) && !thin_out(M, i)
+                        ? (int32_t)nunk++
+                        : -1;
     /* Compressibility (Ikeda et al. 2001): rho alpha / dt^2 p on the diagonal, with the
      * largest density (a bound; exact for one material). */
     double rho_max = 0;
@@ -1612,8 +1636,8 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         p[i] = v;
     }
     if (sim->par) sim->par->sync(sim, p, 1);
-    if (M->wall_extrapolate) extrapolate_walls(sim, M);
-    if (sim->par && M->wall_extrapolate) sim->par->sync(sim, p, 1);
+    if (M->wall_extrapolate || M->thin_neumann) extrapolate_walls(sim, M);
+    if (sim->par && (M->wall_extrapolate || M->thin_neumann)) sim->par->sync(sim, p, 1);
     return RY_OK;
 }
 
