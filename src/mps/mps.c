@@ -56,6 +56,7 @@ typedef struct mps {
     int wall_extrapolate;  /* wall pressure for the gradient extrapolated from the fluid */
     int thin_neumann;      /* thin walls stay out of the pressure equation (Neumann) */
     int inlet_closed;      /* inflow buffers are never free surface (a piston) */
+    int cl_slip;           /* walls give no shear stress at a contact line of two liquids */
     double coll_r, coll_e; /* artificial repulsion: distance, restitution */
     int dilate;            /* number-density source also for n* < n0 (else compression only) */
     ry_surface_tension st;
@@ -92,6 +93,7 @@ typedef struct mps {
     size_t dmap_cap;
     int32_t *unk; /* unknown index per particle, -1 if none */
     uint8_t *role;
+    uint8_t *cline; /* with cl_slip: 1 for a fluid particle with another liquid near */
     double *b, *xs;
     double *pd;       /* Dirichlet pressure of the surface particles (8 n: work) */
     int csf_pressure; /* CSF as the Laplace jump on the surface particles */
@@ -380,6 +382,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     int inlet_surface = 0;
     RY_TRY(ry_case_bool(c, "scheme.inlet_free_surface", &no, &inlet_surface, err));
     M->inlet_closed = !inlet_surface;
+    RY_TRY(ry_case_bool(c, "scheme.contact_line_slip", &no, &M->cl_slip, err));
     RY_TRY(ry_case_bool(c, "scheme.thin_wall_cut", &yes, &M->thin_cut_on, err));
     const long three = 3;
     long layers;
@@ -438,6 +441,7 @@ static void mps_free(void *state) {
     free(M->dmap);
     free(M->unk);
     free(M->role);
+    free(M->cline);
     free(M->b);
     free(M->xs);
     free(M->pd);
@@ -476,6 +480,8 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (u) M->unk = u;
     uint8_t *r = realloc(M->role, c * sizeof *r);
     if (r) M->role = r;
+    uint8_t *cl = realloc(M->cline, c * sizeof *cl);
+    if (cl) M->cline = cl;
     double *b = realloc(M->b, 3 * c * sizeof *b);
     if (b) M->b = b;
     double *x = realloc(M->xs, 3 * c * sizeof *x);
@@ -1023,9 +1029,31 @@ static inline double pair_nu(const ry_sim *sim, const mps *M, size_t i, size_t j
  * to the nearest particle of the other kind (fluid for a wall, wall for a fluid particle) less
  * half a spacing, which is exact on a lattice beside a flat wall. */
 static inline double wall_beta(const ry_sim *sim, const mps *M, size_t i, size_t j) {
-    if (M->wall_mode == WALLV_OWN || sim->ps.kind[j] == RY_KIND_FLUID) return 1.0;
+    if (sim->ps.kind[j] == RY_KIND_FLUID) return 1.0;
+    if (M->cl_slip && M->cline[i]) return 0.0; /* a contact line slides (contact_lines) */
+    if (M->wall_mode == WALLV_OWN) return 1.0;
     if (M->wall_mode == WALLV_SLIP) return 0.0; /* no shear stress from the walls */
     return 1.0 + fmin(M->wd[j] / fmax(M->wd[i], 1e-3 * sim->dx), 1.5);
+}
+
+/* `scheme.contact_line_slip`: marks the fluid particles that have a fluid particle of another
+ * material within the Laplacian's radius, the liquids' interface. Where such a particle meets a
+ * wall, the wall gives it no shear stress (wall_beta 0), so that the line where the interface
+ * meets the wall can slide while the wall holds each liquid elsewhere: the slip of the
+ * generalised Navier boundary condition, which is confined to the contact line (Qian, Wang &
+ * Sheng 2003), at the resolution of the particles. */
+static void contact_lines(ry_sim *sim, mps *M) {
+    const ry_particles *ps = &sim->ps;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < ps->n; ++i) {
+        uint8_t c = 0;
+        if (ps->kind[i] == RY_KIND_FLUID)
+            for (size_t q = sim->nl.offset[i]; q < M->lend[i] && !c; ++q) {
+                const uint32_t j = M->pj[q];
+                c = ps->kind[j] == RY_KIND_FLUID && ps->material[j] != ps->material[i];
+            }
+        M->cline[i] = c;
+    }
 }
 
 static void wall_distances(ry_sim *sim, mps *M) {
@@ -1777,6 +1805,7 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     const int fuse = M->st.model == RY_ST_POTENTIAL && M->st.sigma != 0.0 && !M->csf_pressure &&
                      !M->colour_on && M->wall_mode != WALLV_MIRRORED && !M->rheo_gnf &&
                      !M->rheo_ob && M->visc == VISC_MIXED && !sim->par;
+    if (M->cl_slip) contact_lines(sim, M);
     if (!M->csf_pressure && !fuse) RY_TRY(ry_st_accelerate(&M->st, sim, a, err));
     if (M->colour_on) RY_TRY(colour_accelerate(sim, M, a, err));
     if (M->wall_mode == WALLV_MIRRORED) wall_distances(sim, M);
