@@ -435,9 +435,9 @@ static void test_two_liquid_sessile_90(void **state) {
  * 0.05 m/s here to keep the test short): the injected volume (inflow_volume, lanes of inlet
  * buffer particles that became fluid) within half a layer of U w t (w = 0.4 mm) at every output
  * and within 1 % at 0.1 s (50 layers); the liquid below the tip stays one body with the column
- * in the catheter and grows by more than 0.5 mm from the first output (measured 0.57 to
- * 1.32 mm, 1.65 mm wide: the catheter's walls hold the liquid with its own viscosity, and the
- * bulb grows round rather than long), and the run stays calm (largest speed below 0.3 m/s:
+ * in the catheter and grows by more than 0.5 mm from the first output (measured 0.39 to
+ * 1.47 mm, 1.58 mm wide; the catheter's walls hold the liquid with its own viscosity, and
+ * the bulb grows rounder than before), and the run stays calm (largest speed below 0.3 m/s:
  * the potential model's spurious speeds are about 0.1 m/s, an unstable run goes past 1 m/s). */
 static void test_catheter_inflow(void **state) {
     (void)state;
