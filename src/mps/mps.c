@@ -55,7 +55,7 @@ typedef struct mps {
     int pmin_on;           /* gradient with the neighbourhood's least pressure (eq. 5) */
     int wall_extrapolate;  /* wall pressure for the gradient extrapolated from the fluid */
     int thin_neumann;      /* thin walls stay out of the pressure equation (Neumann) */
-    int inlet_closed;      /* inflow buffers are never free surface (a piston) */
+    int inlet_surface;     /* inflow buffers may be free surface (else a closed piston) */
     int cl_slip;           /* walls give no shear stress at a contact line of two liquids */
     double coll_r, coll_e; /* artificial repulsion: distance, restitution */
     int dilate;            /* number-density source also for n* < n0 (else compression only) */
@@ -379,9 +379,7 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_case_bool(c, "scheme.wall_extrapolation", &yes, &M->wall_extrapolate, err));
     RY_TRY(ry_case_choice(c, "scheme.thin_wall_pressure", "neumann", thin_pressure_names,
                           &M->thin_neumann, err));
-    int inlet_surface = 0;
-    RY_TRY(ry_case_bool(c, "scheme.inlet_free_surface", &no, &inlet_surface, err));
-    M->inlet_closed = !inlet_surface;
+    RY_TRY(ry_case_bool(c, "scheme.inlet_free_surface", &no, &M->inlet_surface, err));
     RY_TRY(ry_case_bool(c, "scheme.contact_line_slip", &no, &M->cl_slip, err));
     RY_TRY(ry_case_bool(c, "scheme.thin_wall_cut", &yes, &M->thin_cut_on, err));
     const long three = 3;
@@ -480,8 +478,6 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (u) M->unk = u;
     uint8_t *r = realloc(M->role, c * sizeof *r);
     if (r) M->role = r;
-    uint8_t *cl = realloc(M->cline, c * sizeof *cl);
-    if (cl) M->cline = cl;
     double *b = realloc(M->b, 3 * c * sizeof *b);
     if (b) M->b = b;
     double *x = realloc(M->xs, 3 * c * sizeof *x);
@@ -510,6 +506,11 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         wv = realloc(M->wd, c * sizeof *wv);
         if (wv) M->wd = wv;
     }
+    uint8_t *cl = M->cline;
+    if (M->cl_slip) {
+        cl = realloc(M->cline, c * sizeof *cl);
+        if (cl) M->cline = cl;
+    }
     uint8_t *wg = M->wgroup;
     if (M->body_group) {
         wg = realloc(M->wgroup, c * sizeof *wg);
@@ -534,8 +535,8 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     }
     RY_CHECK(err,
              u && r && b && x && pd && o && ns && dv && t && ge && le && (vg || !M->rheo_ob) &&
-                 (wv || M->wall_mode != WALLV_MIRRORED) && (wg || !M->body_group) &&
-                 ((th && tv && tp && to && cr) || !M->body_thin),
+                 (wv || M->wall_mode != WALLV_MIRRORED) && (cl || !M->cl_slip) &&
+                 (wg || !M->body_group) && ((th && tv && tp && to && cr) || !M->body_thin),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
@@ -985,7 +986,7 @@ static void number_density(ry_sim *sim, mps *M) {
                 M->role[i] = nd[i] < M->beta ? ROLE_SURFACE : ROLE_FLUID;
             } else {
                 const int thin = M->thin && M->thin[i] >= 0;
-                const int closed = thin || (M->inlet_closed && ps->kind[i] == RY_KIND_INLET);
+                const int closed = thin || (!M->inlet_surface && ps->kind[i] == RY_KIND_INLET);
                 M->role[i] = !fluid_near                  ? ROLE_DUMMY
                              : nd[i] < M->beta && !closed ? ROLE_SURFACE
                                                           : ROLE_WALL;
@@ -1490,7 +1491,7 @@ static void extrapolate_walls(ry_sim *sim, mps *M) {
                 M->tpw[2 * i + side] = sws[side] > 0 ? fmax(ss[side] / sws[side], 0.0) : pw[i];
     }
     for (size_t i = 0; i < n; ++i)
-        if (M->role[i] == ROLE_WALL) ps->f[RY_F_P][i] = pw[i]; /* (the others: pw = p) */
+        if (M->role[i] == ROLE_WALL) ps->f[RY_F_P][i] = pw[i];
 }
 
 /* CSF in pressure form: the Dirichlet value of each surface particle is the Laplace jump
@@ -1664,8 +1665,10 @@ static ry_status pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         p[i] = v;
     }
     if (sim->par) sim->par->sync(sim, p, 1);
-    if (M->wall_extrapolate || M->thin_neumann) extrapolate_walls(sim, M);
-    if (sim->par && (M->wall_extrapolate || M->thin_neumann)) sim->par->sync(sim, p, 1);
+    if (M->wall_extrapolate || M->thin_neumann) {
+        extrapolate_walls(sim, M);
+        if (sim->par) sim->par->sync(sim, p, 1);
+    }
     return RY_OK;
 }
 
