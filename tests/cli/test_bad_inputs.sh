@@ -54,6 +54,8 @@ case_ mps_outlet_pressure 2 ":8: key 'open_boundaries[0].pressure': scheme mps t
 case_ mps_surface_pressure_unknown 2 ":7: key 'scheme.surface_pressure': expected one of zero, hydrostatic; got 'extrapolated'"
 case_ mps_deflation_negative 2 ":7: key 'scheme.solver.deflation': expected an integer in [0, 1000], got '-2'"
 case_ mps_thin_wall_layers 2 ":5: key 'scheme.thin_wall_layers': expected an integer in [1, 3], got '4'"
+case_ mps_thin_wall_pressure_unknown 2 ":7: key 'scheme.thin_wall_pressure': expected one of unknown, neumann; got 'dirichlet'"
+case_ mps_contact_line_slip_not_bool 2 ":7: key 'scheme.contact_line_slip': expected true or false, got 'sometimes'"
 case_ inlet_flow_rate_and_velocity 2 ":8: key 'open_boundaries[0].flow_rate': an inlet takes 'velocity' or 'flow_rate' with 'direction', not both"
 case_ inlet_flow_rate_direction 2 ":8: key 'open_boundaries[0].direction': the flow must be along one axis (a unit vector such as [0, 0, -1])"
 case_ rheology_no_bound 2 ":6: key 'materials[0].rheology.viscosity_max': required key is missing"
