@@ -13,7 +13,9 @@ typedef struct ry_table {
     double *data; /* row-major nrows x ncols */
 } ry_table;
 
-/* Reads a CSV file of numbers with a header row; errors name the file, line and column. */
+/* Reads a CSV file of numbers with a header row; errors name the file, line and column. An
+ * empty field reads as NAN (not recorded: the earlier rows of a series after a restart that
+ * added a measurement). */
 ry_status ry_table_read(ry_table *t, const char *path, ry_error *err);
 void ry_table_free(ry_table *t);
 /* Column index by name, -1 when absent. */

@@ -9,8 +9,11 @@
  *
  * ryushi validate embolization3d_all: the same, then the tank with a visco-elastic embolic
  * liquid (_oldroyd_b.yaml), one of the two pieces the seed names as missing (the other, the
- * tip's wetting, has no case yet: docs/validation.md). Each run has its table and figure, and
- * the detachment times are compared in embolization3d_all.md and embolization3d_all.png. */
+ * tip's wetting, is docs/validation.md's), and the tank 6 x 6 mm wide with the tip 1.6 mm under
+ * the water's surface (mps_embolization_3d_wide_deep_coarse.yaml), where neither a wall nor the
+ * surface is within the surface-tension model's reach of the droplet. Each run has its table and
+ * figure, and the detachment times are compared in embolization3d_all.md and
+ * embolization3d_all.png. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <signal.h>
@@ -78,8 +81,8 @@ static ry_status run_or_resume(const char *cpath, int nset, const char *const *s
     return st;
 }
 
-/* Slice y = 0 of the tank around the tip (|y| < dx/2): walls, water and the embolic liquid as
- * markers, x and z in mm. */
+/* Slice y = 0 of the tank (|y| < dx/2): walls, water and the embolic liquid as markers, x and z
+ * in mm, over the walls' extent (the tanks differ in width). */
 static void tip_slice(ry_plot *p, int panel, const ry_sim *sim) {
     ry_error err;
     char title[128];
@@ -87,8 +90,16 @@ static void tip_slice(ry_plot *p, int panel, const ry_sim *sim) {
     ry_plot_panel(p, panel, title, "x [mm]", "z [mm]", &err);
     const char *const label[3] = {"wall", "water", "embolic liquid"};
     ry_cli_slice_markers(p, panel, sim, 0.5 * sim->dx, label, 1);
-    ry_plot_xrange(p, panel, -2.6, 2.6, &err);
-    ry_plot_yrange(p, panel, -0.8, 9.2, &err);
+    double xmax = 0, zlo = 0, zhi = 0;
+    for (size_t i = 0; i < sim->ps.n; ++i)
+        if (sim->ps.kind[i] == RY_KIND_WALL) {
+            xmax = fmax(xmax, fabs(sim->ps.f[RY_F_X][i]));
+            zlo = fmin(zlo, sim->ps.f[RY_F_Z][i]);
+            zhi = fmax(zhi, sim->ps.f[RY_F_Z][i]);
+        }
+    const double pad = 1e3 * sim->dx;
+    ry_plot_xrange(p, panel, -1e3 * xmax - pad, 1e3 * xmax + pad, &err);
+    ry_plot_yrange(p, panel, 1e3 * zlo - pad, 1e3 * zhi + pad, &err);
     ry_plot_legend(p, panel, RY_PLOT_LEGEND_SW, &err);
 }
 
@@ -149,15 +160,19 @@ static void plot_figure(const ry_table *s, const ry_sim *sim, double t_det, cons
     ry_plot_free(p);
 }
 
-/* One tank of the comparison: the case file's suffix after mps_embolization_3d_coarse, and what
- * it changes. */
+/* One tank of the comparison: its case file (cases/mps_<file>.yaml; the run goes to <file> under
+ * the output folder), the suffix of its table and figure, and what it changes. All have the same
+ * catheter. */
 typedef struct variant {
-    const char *stem, *name, *label; /* name: in titles and legends */
+    const char *file, *stem, *name, *label; /* name: in titles and legends */
 } variant;
 
 static const variant variants[] = {
-    {"", "Newtonian", "the case as it is"},
-    {"_oldroyd_b", "Oldroyd-B", "the embolic liquid Oldroyd-B (lambda 0.1 s, 10 % solvent)"},
+    {"embolization_3d_coarse", "", "seed's tank", "the seed's tank (4 x 4 mm, tip 0.5 mm deep)"},
+    {"embolization_3d_coarse_oldroyd_b", "_oldroyd_b", "Oldroyd-B",
+     "the seed's tank, the embolic liquid Oldroyd-B (lambda 0.1 s, 10 % solvent)"},
+    {"embolization_3d_wide_deep_coarse", "_wide_deep", "wide, deep tip",
+     "the tank 6 x 6 mm, the tip 1.6 mm deep"},
 };
 #define NVARIANTS (sizeof variants / sizeof variants[0])
 
@@ -175,17 +190,15 @@ static void run_variant(const char *root, const char *out, int quick, const vari
                         int *failures, result *res) {
     ry_error err = {0};
     char cpath[4096], odir[4096], spath[4200], mdp[4096], png[4096], title[256];
-    snprintf(cpath, sizeof cpath, "%s/cases/mps_embolization_3d_coarse%s.yaml", root, v->stem);
-    snprintf(odir, sizeof odir, "%s/embolization_3d_coarse%s%s", out, v->stem,
-             quick ? "_quick" : "");
+    snprintf(cpath, sizeof cpath, "%s/cases/mps_%s.yaml", root, v->file);
+    snprintf(odir, sizeof odir, "%s/%s%s", out, v->file, quick ? "_quick" : "");
     snprintf(spath, sizeof spath, "%s/series.csv", odir);
     snprintf(mdp, sizeof mdp, "%s/embolization3d%s.md", out, v->stem);
     snprintf(png, sizeof png, "%s/embolization3d%s.png", out, v->stem);
     snprintf(title, sizeof title, "Droplet below the tip (3D, l0 = 0.2 mm)%s%s",
              *v->stem ? ", " : "", *v->stem ? v->name : "");
-    printf("Liquid embolization, 3D, l0 = 0.2 mm (cases/mps_embolization_3d_coarse%s.yaml: %s), "
-           "%s\n",
-           v->stem, v->label, quick ? "to 0.5 s" : "until the droplet detaches");
+    printf("Liquid embolization, 3D, l0 = 0.2 mm (cases/mps_%s.yaml: %s), %s\n", v->file, v->label,
+           quick ? "to 0.5 s" : "until the droplet detaches");
     memset(res, 0, sizeof *res);
     res->t_det = -1;
     const char *sets[2] = {"output.vtk=false", "time.end=0.5"};
@@ -382,8 +395,8 @@ int ry_cli_validate_embolization3d_all(const char *root, const char *out, int qu
     ry_error err = {0};
     ry_atomic_file af = {0};
     FILE *md = ry_atomic_open(&af, mdp, &err) == RY_OK ? af.fp : NULL;
-    printf("Liquid embolization, 3D, l0 = 0.2 mm: the detachment with and without the "
-           "visco-elasticity\n");
+    printf("Liquid embolization, 3D, l0 = 0.2 mm: the detachment in the seed's tank with and "
+           "without the visco-elasticity, and in the wide tank with the deep tip\n");
     if (md)
         fprintf(md, "| case | detached at [s] | against the experiment (11.72 s) | against the "
                     "seed's simulation (14.0 s) | injected then [mm^3] | longest before [mm] | "

@@ -56,9 +56,13 @@ ry_status ry_table_read(ry_table *t, const char *path, ry_error *err) {
         }
         char *s = line;
         for (int c = 0; c < t->ncols && st == RY_OK; ++c) {
-            char *end;
-            double v = strtod(s, &end);
-            if (end == s || (*end != ',' && *end != '\0') || (c + 1 < t->ncols && *end != ','))
+            /* an empty field is a value not recorded (a restart's earlier rows, in a column
+             * that run did not measure): NAN */
+            const int empty = *s == ',' || *s == '\0';
+            char *end = s;
+            const double v = empty ? NAN : strtod(s, &end);
+            if ((end == s && !empty) || (*end != ',' && *end != '\0') ||
+                (c + 1 < t->ncols && *end != ','))
                 st = ry_error_set(err, RY_ERR_INPUT, "%s:%ld: column '%s': not a number", path,
                                   lineno, t->names[c]);
             t->data[t->nrows * (size_t)t->ncols + (size_t)c] = v;

@@ -150,10 +150,42 @@ static void test_bad_profiles(void **state) {
     }
 }
 
+static void write_text(const char *path, const char *text) {
+    FILE *fp = fopen(path, "w");
+    assert_non_null(fp);
+    fputs(text, fp);
+    fclose(fp);
+}
+
+/* The table reader: an empty field is NAN (a series' rows from before a restart that added a
+ * measurement), a field that is not a number or a short row stops with the file, line and
+ * column. */
+static void test_table_empty_fields(void **state) {
+    (void)state;
+    char path[600];
+    snprintf(path, sizeof path, "%s/table.csv", tmpdir);
+    write_text(path, "t,a,b\n0,1,\n0.5,,2\n1,3,4\n");
+    ry_error err = {0};
+    ry_table t;
+    assert_int_equal(ry_table_read(&t, path, &err), RY_OK);
+    assert_int_equal(t.nrows, 3);
+    assert_true(ry_table_at(&t, 0, 1) == 1 && isnan(ry_table_at(&t, 0, 2)));
+    assert_true(isnan(ry_table_at(&t, 1, 1)) && ry_table_at(&t, 1, 2) == 2);
+    assert_true(ry_table_at(&t, 2, 0) == 1 && ry_table_at(&t, 2, 2) == 4);
+    ry_table_free(&t);
+    write_text(path, "t,a,b\n0,1,2\n0.5,x,2\n");
+    assert_int_equal(ry_table_read(&t, path, &err), RY_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "table.csv:3: column 'a'"));
+    write_text(path, "t,a,b\n0,1\n");
+    assert_int_equal(ry_table_read(&t, path, &err), RY_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "table.csv:2: column"));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_linear_field_and_average),
         cmocka_unit_test(test_bad_profiles),
+        cmocka_unit_test(test_table_empty_fields),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
