@@ -54,6 +54,7 @@ ry_status ry_sim_output(ry_sim *sim, ry_error *err) {
 ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err) {
     double t0 = ry_wall_time(), last_report = t0;
     long step0 = sim->step;
+    const double t_begin = sim->t; /* a restart or a second call starts part-way */
     double psteps = 0;
     ry_status st = RY_OK;
     ry_error local;
@@ -155,8 +156,10 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         double now = ry_wall_time();
         if (hooks && hooks->progress && now - last_report >= hooks->progress_interval_s) {
             double rate = psteps / fmax(now - t0, 1e-9);
-            double frac = sim->t / sim->t_end;
-            double eta = frac > 0 ? (now - t0) * (1 - frac) / frac : 0;
+            /* From this run's own pace: a run continued from 15 of 20 s has 5 s to go at the
+             * rate of the steps it has taken, not 15/20 of its work done. */
+            double done_t = sim->t - t_begin, left_t = sim->t_end - sim->t;
+            double eta = done_t > 0 ? (now - t0) * left_t / done_t : 0;
             hooks->progress(hooks->ctx, sim, rate, eta);
             last_report = now;
         }

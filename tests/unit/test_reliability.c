@@ -121,6 +121,43 @@ static void test_checkpoint_round_trip(void **state) {
 }
 
 /* Every prefix of a checkpoint, and the file with any one byte changed, is rejected. */
+/* The progress hook's remaining time comes from the run's own pace: a run continued from
+ * part-way counts only the simulated time it has covered itself. */
+typedef struct eta_probe {
+    double wall0, t_begin, eta, expect;
+    int calls;
+} eta_probe;
+
+static void record_eta(void *ctx, const ry_sim *sim, double rate, double eta) {
+    (void)rate;
+    eta_probe *p = ctx;
+    double elapsed = ry_wall_time() - p->wall0;
+    p->eta = eta;
+    p->expect = elapsed * (sim->t_end - sim->t) / (sim->t - p->t_begin);
+    p->calls++;
+}
+
+static void test_eta_of_a_continued_run(void **state) {
+    (void)state;
+    ry_sim sim;
+    ry_case *c = NULL;
+    ry_error err = {0};
+    assert_int_equal(setup(&sim, &c, &err), RY_OK);
+    sim.max_steps = 40;
+    assert_int_equal(ry_sim_run(&sim, NULL, NULL, &err), RY_OK);
+    assert_true(sim.t > 0 && sim.t < 0.5 * sim.t_end);
+    eta_probe p = {.t_begin = sim.t};
+    ry_run_hooks hooks = {.progress = record_eta, .ctx = &p, .progress_interval_s = 0};
+    sim.max_steps = 80;
+    p.wall0 = ry_wall_time();
+    assert_int_equal(ry_sim_run(&sim, &hooks, NULL, &err), RY_OK);
+    assert_true(p.calls > 0);
+    /* Counted from t = 0, the estimate would be (t - t_begin) / t, about half, of this. */
+    assert_true(p.eta > 0.8 * p.expect && p.eta < 1.25 * p.expect);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 static void test_damaged_checkpoints_rejected(void **state) {
     (void)state;
     ry_error err = {0};
@@ -208,6 +245,7 @@ int main(void) {
         cmocka_unit_test(test_nan_stops_within_a_step),
         cmocka_unit_test(test_fluid_leaving_the_domain),
         cmocka_unit_test(test_checkpoint_round_trip),
+        cmocka_unit_test(test_eta_of_a_continued_run),
         cmocka_unit_test(test_damaged_checkpoints_rejected),
         cmocka_unit_test(test_in_wall_counts_current_positions),
     };
