@@ -42,6 +42,10 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
 /* The same tank as it is and with an Oldroyd-B embolic liquid: the detachment times compared
  * (validate_embolization3d.c). */
 int ry_cli_validate_embolization3d_all(const char *root, const char *out, int quick, int *failures);
+/* ryushi validate embolization3d_wide: the wide tanks alone, the tip's face wetted and not
+ * (validate_embolization3d.c). */
+int ry_cli_validate_embolization3d_wide(const char *root, const char *out, int quick,
+                                        int *failures);
 /* Non-Newtonian channel flows (validate_rheology.c). */
 int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *failures);
 /* IISPH and two-phase validation (validate_iisph.c). */

@@ -469,11 +469,11 @@ int ry_cli_validate(int argc, char **argv) {
         strcmp(what, "rheology") != 0 && strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 &&
         strcmp(what, "eye") != 0 && strcmp(what, "embolization") != 0 &&
         strcmp(what, "embolization3d") != 0 && strcmp(what, "embolization3d_all") != 0 &&
-        strcmp(what, "wetting") != 0) {
+        strcmp(what, "embolization3d_wide") != 0 && strcmp(what, "wetting") != 0) {
         fprintf(stderr,
                 "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
                 "buckling, mps, rheology, iisph, rt, eye, embolization, embolization3d, "
-                "embolization3d_all, wetting or all, got '%s'\n",
+                "embolization3d_all, embolization3d_wide, wetting or all, got '%s'\n",
                 what);
         return 2;
     }
@@ -500,6 +500,8 @@ int ry_cli_validate(int argc, char **argv) {
         ry_cli_validate_embolization3d(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "embolization3d_all") == 0)
         ry_cli_validate_embolization3d_all(v.root, v.out, v.quick, &v.failures);
+    if (strcmp(what, "embolization3d_wide") == 0)
+        ry_cli_validate_embolization3d_wide(v.root, v.out, v.quick, &v.failures);
     printf("validate: %s (%d failure(s)); output in %s\n", v.failures ? "FAILED" : "passed",
            v.failures, v.out);
     return v.failures ? 1 : 0;
