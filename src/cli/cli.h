@@ -42,7 +42,7 @@ int ry_cli_validate_embolization3d(const char *root, const char *out, int quick,
 /* The same tank as it is and with an Oldroyd-B embolic liquid: the detachment times compared
  * (validate_embolization3d.c). */
 int ry_cli_validate_embolization3d_all(const char *root, const char *out, int quick, int *failures);
-/* ryushi validate embolization3d_wide: the wide tanks alone, the tip's face wetted and not
+/* ryushi validate embolization3d_wide: the wide tanks alone, the tip's face at 120 and 180 degrees
  * (validate_embolization3d.c). */
 int ry_cli_validate_embolization3d_wide(const char *root, const char *out, int quick,
                                         int *failures);
