@@ -196,8 +196,7 @@ static double detached_at(const char *spath) {
     ry_table s = {0};
     ry_error err = {0};
     double t = -1;
-    struct stat sb;
-    if (stat(spath, &sb) != 0 || ry_table_read(&s, spath, &err) != RY_OK) return -1;
+    if (ry_table_read(&s, spath, &err) != RY_OK) return -1; /* no series yet: a fresh run */
     const int ct = ry_table_col(&s, "t"), cd = ry_table_col(&s, "droplet_detached");
     for (size_t r = 0; ct >= 0 && cd >= 0 && r < s.nrows && t < 0; ++r)
         if (ry_table_at(&s, r, cd) > 0.5) t = ry_table_at(&s, r, ct);
