@@ -38,6 +38,31 @@ static int var_set(const ry_state_var *v, double x) {
     return 1;
 }
 
+/* A restart may change time.output_interval or checkpoint.interval. The continued run then
+ * keeps the stored run's phase, the last time it was due (its next time less its interval), and
+ * steps from there by the new interval to the first time after t; with the stored schedule a
+ * shorter interval would begin only at the old next time, and checkpoints asked for anew would
+ * never come. Checkpoints written before the interval was stored keep their next time. */
+static ry_status reschedule(const ry_ck_reader *r, const char *record, double now, double t,
+                            double *next, ry_error *err) {
+    if (!ry_ck_find(r, record)) return RY_OK;
+    double before;
+    RY_TRY(ry_ck_get_f64(r, record, &before, err));
+    RY_CHECK(err, isfinite(before) && before >= 0, RY_ERR_INPUT,
+             "checkpoint %s: record '%s': bad value", r->path, record);
+    if (before == now) return RY_OK;
+    if (!(now > 0)) {
+        *next = INFINITY; /* checkpoint.interval: 0, none by time */
+        return RY_OK;
+    }
+    const double last = before > 0 && isfinite(*next) ? *next - before : 0;
+    const double eps = 1e-12 * fmax(fabs(t), now);
+    double n = last + (floor((t + eps - last) / now) + 1) * now;
+    while (n <= t + eps) n += now;
+    *next = n;
+    return RY_OK;
+}
+
 /* ---- writing ------------------------------------------------------------------------------ */
 
 static ry_status put_sim(const ry_sim *sim, ry_ck_writer *w, ry_error *err) {
@@ -55,10 +80,12 @@ static ry_status put_sim(const ry_sim *sim, ry_ck_writer *w, ry_error *err) {
     RY_TRY(ry_ck_put_f64(w, "time/t", sim->t, err));
     RY_TRY(ry_ck_put_f64(w, "time/dt", sim->dt, err));
     RY_TRY(ry_ck_put_f64(w, "time/next_output", sim->next_output, err));
+    RY_TRY(ry_ck_put_f64(w, "time/output_interval", sim->output_interval, err));
     RY_TRY(ry_ck_put_i64(w, "time/step", sim->step, err));
     RY_TRY(ry_ck_put_i64(w, "time/finished", sim->finished, err));
     RY_TRY(ry_ck_put_i64(w, "output/index", sim->output_index, err));
     RY_TRY(ry_ck_put_f64(w, "checkpoint/next_t", sim->ckpt.next_t, err));
+    RY_TRY(ry_ck_put_f64(w, "checkpoint/interval", sim->ckpt.interval, err));
     RY_TRY(ry_ck_put_f64(w, "neighbors/radius", sim->nl_radius, err));
     RY_TRY(ry_ck_put_i64(w, "neighbors/searches", sim->searches, err));
     RY_TRY(ry_ck_put_i64(w, "neighbors/reuses", sim->nl_reuses, err));
@@ -183,6 +210,10 @@ ry_status ry_sim_checkpoint_load(ry_sim *sim, const ry_ck_reader *r, ry_error *e
              "checkpoint %s: record 'output/index': bad value", r->path);
     sim->output_index = (int)v;
     RY_TRY(ry_ck_get_f64(r, "checkpoint/next_t", &sim->ckpt.next_t, err));
+    RY_TRY(reschedule(r, "time/output_interval", sim->output_interval, sim->t, &sim->next_output,
+                      err));
+    RY_TRY(
+        reschedule(r, "checkpoint/interval", sim->ckpt.interval, sim->t, &sim->ckpt.next_t, err));
     RY_TRY(ry_ck_get_f64(r, "neighbors/radius", &sim->nl_radius, err));
     RY_TRY(ry_ck_get_i64(r, "neighbors/searches", &v, err));
     sim->searches = (long)v;

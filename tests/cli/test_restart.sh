@@ -3,7 +3,8 @@
 # --restart ends bitwise identical to an uninterrupted run (VTK files, .pvd, series.csv,
 # profiles), for each scheme (MPS included, and Oldroyd-B fluids in MPS and WCSPH), with
 # inflow and outflow, on another thread count too; a damaged newest checkpoint is skipped for
-# the one before it; a truncated or corrupted checkpoint is rejected by name.
+# the one before it; a truncated or corrupted checkpoint is rejected by name; a restart with
+# other output and checkpoint intervals follows them from the checkpoint on.
 # usage: test_restart.sh RYUSHI SOURCE_DIR
 set -u
 RY=$1
@@ -198,6 +199,20 @@ got=$(awk -F, 'NR == 3 { print $1 "," $5 "," $6 "," $7 }' "$T/meas/series.csv")
 last=$(tail -1 "$T/meas/series.csv" | awk -F, '{ print ($7 > 0) }')
 [ "$last" = 1 ] || bad "last row without fluid_particles: $(tail -1 "$T/meas/series.csv")"
 ok
+
+# 12. A restart with a shorter output interval and a checkpoint interval asked for anew: the
+# outputs go on every 0.005 s from the first such time after the checkpoint (0.1044 s), not
+# from the stored schedule's next time (0.12 s), and a checkpoint comes at 0.15 s.
+# shellcheck disable=SC2086
+run sched "$DAM" $DAMSET --threads 1 --set time.max_steps=620
+# shellcheck disable=SC2086
+"$RY" run "$DAM" $DAMSET --threads 1 --restart "$T/sched" --set time.output_interval=0.005 \
+    --set checkpoint.interval=0.05 --set checkpoint.keep=10 > "$T/sched2.log" 2>&1 ||
+    bad "restart with other intervals failed: $(cat "$T/sched2.log")"
+got=$(awk -F, 'NR > 1 && $1 > 0.1 && $1 < 0.13 { printf "%s ", $1 }' "$T/sched/series.csv")
+[ "$got" = "0.105 0.11 0.115 0.12 0.125 " ] && ok || bad "output times after the restart: $got"
+ncheck=$(find "$T/sched/checkpoints" -name 'checkpoint_*.ryc' | wc -l)
+[ "$ncheck" -eq 3 ] && ok || bad "$ncheck checkpoints after the restart, want 3 (at the stop, 0.15 s, the end)"
 
 printf "restart tests: "
 finish
