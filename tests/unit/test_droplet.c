@@ -1,6 +1,8 @@
 /* The droplet measurements (case section `droplet`): length, width and aspect ratio of the body
  * of a material attached to a nozzle, and its detachment, on particle sets built by hand; and
- * the largest polymer stress (`max_polymer_stress`) of the visco-elastic embolic liquid. */
+ * the largest polymer stress (`max_polymer_stress`) of the visco-elastic embolic liquid; and the
+ * 3D wide tank's variants, which build its particles with the same identifiers, so that a run of
+ * it continues with them from its checkpoint. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -170,12 +172,82 @@ static void test_polymer_stress(void **state) {
     ry_case_free(c);
 }
 
+/* Sets up cases/NAME.yaml into sim (and its case into *c). */
+static void setup_case(const char *name, ry_sim *sim, ry_case **c) {
+    const char *src = getenv("RY_SOURCE_DIR");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/cases/%s.yaml", src && *src ? src : RY_SOURCE_DIR, name);
+    ry_error err = {0};
+    memset(sim, 0, sizeof *sim);
+    ry_status st = ry_case_load(c, path, &err);
+    if (st == RY_OK) st = ry_sim_setup(sim, *c, tmpdir, &err);
+    if (st != RY_OK) fail_msg("%s: %s", path, err.msg);
+}
+
+/* Whether the particle with this id belongs to a body whose name ends in "_tip". */
+static int is_tip_body(const ry_sim *sim, ry_case *c, int64_t id) {
+    const int b = ry_sim_body_of(sim, id);
+    char key[64];
+    snprintf(key, sizeof key, "bodies[%d].name", b);
+    const char *name = NULL;
+    ry_error err = {0};
+    if (b < 0 || ry_case_string(c, key, "", &name, &err) != RY_OK) return 0;
+    const size_t l = strlen(name);
+    return l >= 4 && strcmp(name + l - 4, "_tip") == 0;
+}
+
+/* The tip-face variants of the wide tank split the catheter's bodies (their last layer a body of
+ * its own, listed first) and change coefficients only: every particle keeps its identifier,
+ * kind, material and position, so a checkpoint of one continues as the other. */
+static void test_wide_tank_variants_keep_identifiers(void **state) {
+    (void)state;
+    const char *variants[] = {"mps_embolization_3d_wide_deep_coarse_dry_tip",
+                              "mps_embolization_3d_wide_deep_coarse_dry_tip_adhesion"};
+    ry_sim base, var;
+    ry_case *cb = NULL, *cv = NULL;
+    setup_case("mps_embolization_3d_wide_deep_coarse", &base, &cb);
+    assert_true(base.ps.n > 30000);
+    for (int v = 0; v < 2; ++v) {
+        setup_case(variants[v], &var, &cv);
+        assert_int_equal(var.ps.n, base.ps.n);
+        /* positions to rounding: a box filled from another corner (6.6 mm for the tip's
+         * 6.4 mm) rounds a few of them in their last bit; a restart takes them from the
+         * checkpoint anyway */
+        size_t differ = 0, face = 0, face_ok = 0;
+        for (size_t i = 0; i < base.ps.n; ++i) {
+            differ += var.ps.id[i] != base.ps.id[i] || var.ps.kind[i] != base.ps.kind[i] ||
+                      var.ps.material[i] != base.ps.material[i] ||
+                      fabs(var.ps.f[RY_F_X][i] - base.ps.f[RY_F_X][i]) > 1e-12 ||
+                      fabs(var.ps.f[RY_F_Y][i] - base.ps.f[RY_F_Y][i]) > 1e-12 ||
+                      fabs(var.ps.f[RY_F_Z][i] - base.ps.f[RY_F_Z][i]) > 1e-12;
+            /* the tip's bodies hold the catheter's last layer (z 6.4-6.6 mm, |x|, |y| < 0.4 mm)
+             * and nothing else */
+            if (var.ps.kind[i] != RY_KIND_WALL) continue;
+            const double x = var.ps.f[RY_F_X][i], y = var.ps.f[RY_F_Y][i], z = var.ps.f[RY_F_Z][i];
+            const int in_face = fabs(x) < 4e-4 && fabs(y) < 4e-4 && z > 6.4e-3 && z < 6.6e-3;
+            face += in_face;
+            face_ok += in_face == is_tip_body(&var, cv, var.ps.id[i]);
+        }
+        if (differ) fail_msg("%s: %zu particles differ from the wide tank's", variants[v], differ);
+        /* one layer of the square tube: a ring of 4 x 4 particles around the 2 x 2 bore */
+        assert_int_equal(face, 12);
+        size_t walls = 0;
+        for (size_t i = 0; i < var.ps.n; ++i) walls += var.ps.kind[i] == RY_KIND_WALL;
+        assert_int_equal(face_ok, walls);
+        ry_sim_free(&var);
+        ry_case_free(cv);
+    }
+    ry_sim_free(&base);
+    ry_case_free(cb);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_attached_and_detached),
         cmocka_unit_test(test_axis_from_the_case),
         cmocka_unit_test(test_needs_the_section),
         cmocka_unit_test(test_polymer_stress),
+        cmocka_unit_test(test_wide_tank_variants_keep_identifiers),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
