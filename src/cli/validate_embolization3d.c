@@ -14,13 +14,10 @@
  * surface is within the surface-tension model's reach of the droplet. Each run has its table and
  * figure, and the detachment times are compared in embolization3d_all.md and
  * embolization3d_all.png. The fourth tank is the wide one with a tip face that the embolic
- * liquid meets at 180 degrees, against 120 on the rest of the catheter (..._dry_tip.yaml); the
- * fifth is that one with each liquid's free-surface tension equal to the interfacial one, so
- * that the potential model's unlike pairs attract (..._dry_tip_adhesion.yaml).
+ * liquid meets at 180 degrees, against 120 on the rest of the catheter (..._dry_tip.yaml).
  *
- * ryushi validate embolization3d_wide: the three wide tanks alone (the tip's face at 120 and at
- * 180 degrees, and the last with the liquids attracting), compared in embolization3d_wide.md
- * and .png. */
+ * ryushi validate embolization3d_wide: the two wide tanks alone (the tip's face at 120 and at 180
+ * degrees), compared in embolization3d_wide.md and .png. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <signal.h>
@@ -183,10 +180,6 @@ static const variant variants[] = {
     {"embolization_3d_wide_deep_coarse_dry_tip", "_wide_deep_dry_tip",
      "wide, deep, tip face 180 deg",
      "the tank 6 x 6 mm, the tip 1.6 mm deep, its face at 180 degrees to the embolic liquid"},
-    {"embolization_3d_wide_deep_coarse_dry_tip_adhesion", "_wide_deep_dry_tip_adhesion",
-     "wide, deep, tip face 180 deg, liquids adhering",
-     "the same, each liquid's free surface at the interfacial tension: the liquids attract "
-     "each other"},
 };
 #define FIRST_WIDE 2 /* the wide tanks are the last ones */
 #define NVARIANTS (sizeof variants / sizeof variants[0])
@@ -478,16 +471,14 @@ int ry_cli_validate_embolization3d_all(const char *root, const char *out, int qu
     return compare_variants(root, out, quick, 0, NVARIANTS, "_all",
                             "the detachment in the seed's tank with and without the "
                             "visco-elasticity, and in the wide tank with the deep tip, its face at "
-                            "120 and at 180 degrees to the embolic liquid, and the last with the "
-                            "liquids attracting each other",
+                            "120 and at 180 degrees to the embolic liquid",
                             failures);
 }
 
 int ry_cli_validate_embolization3d_wide(const char *root, const char *out, int quick,
                                         int *failures) {
-    return compare_variants(root, out, quick, FIRST_WIDE, NVARIANTS - FIRST_WIDE, "_wide",
-                            "the wide tank with the deep tip, its face at 120 and at 180 degrees "
-                            "to the embolic liquid, "
-                            "and the last with the liquids attracting each other",
-                            failures);
+    return compare_variants(
+        root, out, quick, FIRST_WIDE, NVARIANTS - FIRST_WIDE, "_wide",
+        "the wide tank with the deep tip, its face at 120 and at 180 degrees to the embolic liquid",
+        failures);
 }
