@@ -54,5 +54,6 @@ int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *fai
 int ry_cli_validate_rt(const char *root, const char *out, int quick, int *failures);
 /* The eye case in segments with slice pictures (validate_iisph.c). */
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures);
+int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, int *failures);
 
 #endif

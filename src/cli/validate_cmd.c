@@ -467,14 +467,16 @@ int ry_cli_validate(int argc, char **argv) {
         strcmp(what, "channel") != 0 && strcmp(what, "cantilever") != 0 &&
         strcmp(what, "plate") != 0 && strcmp(what, "buckling") != 0 && strcmp(what, "mps") != 0 &&
         strcmp(what, "rheology") != 0 && strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 &&
-        strcmp(what, "eye") != 0 && strcmp(what, "embolization") != 0 &&
-        strcmp(what, "embolization3d") != 0 && strcmp(what, "embolization3d_all") != 0 &&
-        strcmp(what, "embolization3d_wide") != 0 && strcmp(what, "wetting") != 0) {
-        fprintf(stderr,
-                "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
-                "buckling, mps, rheology, iisph, rt, eye, embolization, embolization3d, "
-                "embolization3d_all, embolization3d_wide, wetting or all, got '%s'\n",
-                what);
+        strcmp(what, "eye") != 0 && strcmp(what, "eye_positions") != 0 &&
+        strcmp(what, "embolization") != 0 && strcmp(what, "embolization3d") != 0 &&
+        strcmp(what, "embolization3d_all") != 0 && strcmp(what, "embolization3d_wide") != 0 &&
+        strcmp(what, "wetting") != 0) {
+        fprintf(
+            stderr,
+            "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
+            "buckling, mps, rheology, iisph, rt, eye, eye_positions, embolization, embolization3d, "
+            "embolization3d_all, embolization3d_wide, wetting or all, got '%s'\n",
+            what);
         return 2;
     }
     if (all || strcmp(what, "dam_break") == 0) validate_dam_break(&v);
@@ -494,6 +496,8 @@ int ry_cli_validate(int argc, char **argv) {
     if (strcmp(what, "rt") == 0) ry_cli_validate_rt(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "wetting") == 0) ry_cli_validate_wetting(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "eye") == 0) ry_cli_validate_eye(v.root, v.out, v.quick, &v.failures);
+    if (strcmp(what, "eye_positions") == 0)
+        ry_cli_validate_eye_positions(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "embolization") == 0)
         ry_cli_validate_embolization(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "embolization3d") == 0)
