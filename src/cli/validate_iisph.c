@@ -403,6 +403,12 @@ static void eye_slice(ry_plot *p, int panel, int legend, const ry_sim *sim, cons
     ry_plot_legend(p, panel, legend ? RY_PLOT_LEGEND_SW : RY_PLOT_LEGEND_NONE, &err);
 }
 
+/* The oil's share of the injected volume: filled fraction x fluid particles x dx^3 over the
+ * inflow volume (NAN before any inflow). */
+static double oil_kept(double filled, double fluid_particles, double dx, double inflow) {
+    return inflow > 0 ? filled * fluid_particles * pow(dx, 3) / inflow : NAN;
+}
+
 /* The filling at one output: filled fraction, oil-wall contact and the oil's share of the
  * injected volume (filled fraction x fluid particles x dx^3 over inflow_volume). */
 typedef struct eye_state {
@@ -441,7 +447,7 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
             if (strcmp((*q)->name, "fluid_particles") == 0) (*q)->eval(&sim, &nf, err);
             if (strcmp((*q)->name, "iisph_iterations_mean") == 0) (*q)->eval(&sim, &mean, err);
         }
-        const double kept = vin > 0 ? ff * nf * pow(sim.dx, 3) / vin : NAN;
+        const double kept = oil_kept(ff, nf, sim.dx, vin);
         if (at) at[k] = (eye_state){ff, oc, kept};
         printf("  %8.3f %8ld %10.4f %10.4f %10.3f %9.1f %9.2f\n", sim.t, sim.step, ff, oc, kept,
                wall, mean);
@@ -519,16 +525,6 @@ typedef struct eye_position {
     const char *drainage;
 } eye_position;
 
-/* The series' value of column c at time t (the row nearest it), or NAN. */
-static double series_at(const ry_table *s, int ct, int c, double t) {
-    double v = NAN, best = INFINITY;
-    for (size_t r = 0; r < s->nrows; ++r) {
-        const double d = fabs(ry_table_at(s, r, ct) - t);
-        if (d < best) best = d, v = ry_table_at(s, r, c);
-    }
-    return best < 1e-6 ? v : NAN;
-}
-
 /* The posterior drain (cases/eye_posterior_drain.yaml) in the five head positions, one cavity
  * volume each (--quick: 1.0 s). For each: when the oil first reaches the drainage (the oil inside
  * falls below 99 % of the oil injected), the filled fraction, the contact and the oil kept.
@@ -560,7 +556,7 @@ int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, 
         fprintf(md, "| head position | drainage | oil first leaves [s] | filled_fraction at 1.0 / "
                     "2.0 / 3.6 s | oil_wall_contact at 1.0 / 2.0 / 3.6 s | oil kept at the end | "
                     "steps | wall [s] |\n|---|---|---|---|---|---|---|---|\n");
-    double reached[5];
+    double reached[sizeof pos / sizeof pos[0]];
     for (int k = 0; k < npos; ++k) {
         char end[64], head[64], pa[64], odir[4096], spath[4200];
         snprintf(end, sizeof end, "time.end=%g", t_end);
@@ -578,7 +574,7 @@ int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, 
             fail(failures, &err);
             continue;
         }
-        const double dx3 = pow(sim.dx, 3);
+        const double dx = sim.dx;
         ry_sim_free(&sim);
         if (ry_table_read(&s, spath, &err) != RY_OK) {
             fail(failures, &err);
@@ -596,8 +592,8 @@ int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, 
         double kept = NAN;
         reached[k] = INFINITY;
         for (size_t r = 0; r < s.nrows; ++r) {
-            const double vin = ry_table_at(&s, r, ci);
-            kept = vin > 0 ? ry_table_at(&s, r, cf) * ry_table_at(&s, r, cn) * dx3 / vin : NAN;
+            kept = oil_kept(ry_table_at(&s, r, cf), ry_table_at(&s, r, cn), dx,
+                            ry_table_at(&s, r, ci));
             if (ry_table_at(&s, r, ct) > 0.2 && kept < 0.99 && !isfinite(reached[k]))
                 reached[k] = ry_table_at(&s, r, ct);
         }
@@ -607,10 +603,15 @@ int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, 
         else
             snprintf(when, sizeof when, "not by %.1f", t_end);
         double f[3], c[3];
+        double *tcol = ry_table_column(&s, ct), *fcol = ry_table_column(&s, cf),
+               *ocol = ry_table_column(&s, cc);
         for (int j = 0; j < 3; ++j) {
-            f[j] = series_at(&s, ct, cf, times[j]);
-            c[j] = series_at(&s, ct, cc, times[j]);
+            f[j] = tcol && fcol ? ry_interp_linear(tcol, fcol, s.nrows, times[j]) : NAN;
+            c[j] = tcol && ocol ? ry_interp_linear(tcol, ocol, s.nrows, times[j]) : NAN;
         }
+        free(tcol);
+        free(fcol);
+        free(ocol);
         snprintf(ff, sizeof ff, "%.3f / %.3f / %.3f", f[0], f[1], f[2]);
         snprintf(oc, sizeof oc, "%.3f / %.3f / %.3f", c[0], c[1], c[2]);
         printf("  %-11s %-42s %9s %23s %23s %6.3f %7ld %7.0f\n", pos[k].name, pos[k].drainage, when,
