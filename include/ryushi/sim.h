@@ -124,14 +124,19 @@ typedef struct ry_profile {
  * an outlet, fluid that crosses the zone's upstream face becomes an outlet buffer particle:
  * it moves on as fluid at the outlet's pressure (and the reference density) and is removed
  * when it leaves the zone (with sim->open_sink, fluid is removed at the downstream face
- * instead). The flow direction is along one axis. */
+ * instead). A rate outlet (`flow_rate` or `velocity` given instead of `pressure`) takes the
+ * flow out at a prescribed rate: fluid that crosses its upstream face becomes a buffer particle
+ * of kind RY_KIND_INLET that moves on at the prescribed velocity, a wall to the fluid as an
+ * inlet's buffer is, and is removed at the downstream face. The flow direction is along one
+ * axis. */
 enum { RY_OPEN_INLET, RY_OPEN_OUTLET };
 typedef struct ry_open_boundary {
     int type;
     double lo[3], hi[3]; /* zone */
     int axis, sign;      /* flow along +axis (sign 1) or -axis (sign -1) */
-    double velocity[3];  /* inlet velocity [m/s] */
+    double velocity[3];  /* inlet (and rate outlet) velocity [m/s] */
     double pressure;     /* outlet pressure [Pa] */
+    int rate;            /* outlet: its buffer moves at `velocity` (a rate outlet) */
     int material;
     long count; /* inlet: particles turned fluid, less the fluid pushed back into the zone and
                    removed; outlet: particles removed */

@@ -55,5 +55,6 @@ int ry_cli_validate_rt(const char *root, const char *out, int quick, int *failur
 /* The eye case in segments with slice pictures (validate_iisph.c). */
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, int *failures);
+int ry_cli_validate_eye_clinical(const char *root, const char *out, int quick, int *failures);
 
 #endif

@@ -468,14 +468,14 @@ int ry_cli_validate(int argc, char **argv) {
         strcmp(what, "plate") != 0 && strcmp(what, "buckling") != 0 && strcmp(what, "mps") != 0 &&
         strcmp(what, "rheology") != 0 && strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 &&
         strcmp(what, "eye") != 0 && strcmp(what, "eye_positions") != 0 &&
-        strcmp(what, "embolization") != 0 && strcmp(what, "embolization3d") != 0 &&
-        strcmp(what, "embolization3d_all") != 0 && strcmp(what, "embolization3d_wide") != 0 &&
-        strcmp(what, "wetting") != 0) {
+        strcmp(what, "eye_clinical") != 0 && strcmp(what, "embolization") != 0 &&
+        strcmp(what, "embolization3d") != 0 && strcmp(what, "embolization3d_all") != 0 &&
+        strcmp(what, "embolization3d_wide") != 0 && strcmp(what, "wetting") != 0) {
         fprintf(
             stderr,
             "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
-            "buckling, mps, rheology, iisph, rt, eye, eye_positions, embolization, embolization3d, "
-            "embolization3d_all, embolization3d_wide, wetting or all, got '%s'\n",
+            "buckling, mps, rheology, iisph, rt, eye, eye_positions, eye_clinical, embolization, "
+            "embolization3d, embolization3d_all, embolization3d_wide, wetting or all, got '%s'\n",
             what);
         return 2;
     }
@@ -498,6 +498,8 @@ int ry_cli_validate(int argc, char **argv) {
     if (strcmp(what, "eye") == 0) ry_cli_validate_eye(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "eye_positions") == 0)
         ry_cli_validate_eye_positions(v.root, v.out, v.quick, &v.failures);
+    if (strcmp(what, "eye_clinical") == 0)
+        ry_cli_validate_eye_clinical(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "embolization") == 0)
         ry_cli_validate_embolization(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "embolization3d") == 0)

@@ -75,17 +75,18 @@ static ry_status inlet_clear(const ry_sim *sim, ry_case *c, size_t q, const ry_o
     return RY_OK;
 }
 
-/* An inlet's velocity: `velocity` as given, or `flow_rate` Q [m^3/s, m^2/s in 2D] along the
- * unit vector `direction`, through the zone's cross-section A across that axis: Q / A. */
-static ry_status inlet_velocity(ry_case *c, size_t q, int dim, ry_open_boundary *b, ry_error *err) {
+/* An inlet's or a rate outlet's velocity: `velocity` as given, or `flow_rate` Q [m^3/s, m^2/s
+ * in 2D] along the unit vector `direction`, through the zone's cross-section A across that
+ * axis: Q / A. */
+static ry_status zone_velocity(ry_case *c, size_t q, int dim, ry_open_boundary *b, ry_error *err) {
     char k[128], kv[128], where[256];
     snprintf(k, sizeof k, "open_boundaries[%zu].flow_rate", q);
     snprintf(kv, sizeof kv, "open_boundaries[%zu].velocity", q);
     if (!ry_case_has(c, k)) return ry_case_vector(c, kv, NULL, dim, b->velocity, err);
     if (ry_case_has(c, kv))
         return ry_error_set(err, RY_ERR_INPUT,
-                            "%s: key '%s': an inlet takes 'velocity' or 'flow_rate' with "
-                            "'direction', not both",
+                            "%s: key '%s': an open boundary takes 'velocity' or 'flow_rate' "
+                            "with 'direction', not both",
                             ry_case_where(c, k, where, sizeof where), k);
     double rate, dir[3] = {0, 0, 0};
     RY_TRY(ry_case_positive(c, k, NULL, &rate, err));
@@ -103,6 +104,14 @@ static ry_status inlet_velocity(ry_case *c, size_t q, int dim, ry_open_boundary 
         if (d != axis) area *= b->hi[d] - b->lo[d];
     b->velocity[axis] = sign * rate / area;
     return RY_OK;
+}
+
+/* An outlet with `flow_rate` or `velocity`: a rate outlet. */
+static int rate_outlet(ry_case *c, size_t q) {
+    char k[128], kv[128];
+    snprintf(k, sizeof k, "open_boundaries[%zu].flow_rate", q);
+    snprintf(kv, sizeof kv, "open_boundaries[%zu].velocity", q);
+    return ry_case_has(c, k) || ry_case_has(c, kv);
 }
 
 ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
@@ -139,13 +148,25 @@ ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
         if (b->type == RY_OPEN_INLET) {
             /* a velocity from flow_rate lies along its checked direction: only a given
              * velocity can fail the one-axis test below */
-            if ((st = inlet_velocity(c, q, dim, b, err)) != RY_OK) break;
+            if ((st = zone_velocity(c, q, dim, b, err)) != RY_OK) break;
             snprintf(k, sizeof k, "open_boundaries[%zu].velocity", q);
             memcpy(dir, b->velocity, sizeof dir);
             int mat = 0;
             snprintf(k, sizeof k, "open_boundaries[%zu].material", q);
             if ((st = ry_case_choice(c, k, mnames[0], mnames, &mat, err)) != RY_OK) break;
             b->material = mat;
+        } else if ((b->rate = rate_outlet(c, q))) {
+            snprintf(k, sizeof k, "open_boundaries[%zu].pressure", q);
+            if (ry_case_has(c, k)) {
+                st = ry_error_set(err, RY_ERR_INPUT,
+                                  "%s: key '%s': an outlet takes 'pressure', or 'flow_rate' or "
+                                  "'velocity' (a rate outlet), not both",
+                                  ry_case_where(c, k, where, sizeof where), k);
+                break;
+            }
+            if ((st = zone_velocity(c, q, dim, b, err)) != RY_OK) break;
+            snprintf(k, sizeof k, "open_boundaries[%zu].velocity", q);
+            memcpy(dir, b->velocity, sizeof dir);
         } else {
             double zero = 0;
             snprintf(k, sizeof k, "open_boundaries[%zu].direction", q);
@@ -200,6 +221,45 @@ static ry_status mark_removed(uint8_t **remove, size_t n, size_t i, ry_error *er
     return RY_OK;
 }
 
+/* The rate outlet whose buffer a particle at x belongs to (within its cross-section, past its
+ * upstream face), or -1. */
+static int rate_zone(const ry_sim *sim, const double *x) {
+    for (int q = 0; q < sim->nopen; ++q) {
+        const ry_open_boundary *b = &sim->open[q];
+        if (b->type != RY_OPEN_OUTLET || !b->rate || !inside_across(b, x, sim->dim)) continue;
+        if (past(b, x, b->sign > 0 ? b->lo[b->axis] : b->hi[b->axis]) >= 0) return q;
+    }
+    return -1;
+}
+
+/* A rate outlet's buffer particles move together along the flow (a plug), at the speed that
+ * keeps the volume removed at Q t: U = Q / A while it is on time, faster when it lags, by up to
+ * twice U when a layer of the zone (A dx) behind, and slower when it runs ahead, at rest a
+ * layer ahead. Fluid that crowds into the zone closer than the lattice's spacing therefore
+ * does not leave faster than Q, nor does a zone that starts empty lag it for long. */
+static void rate_speeds(ry_sim *sim) {
+    ry_particles *ps = &sim->ps;
+    const double cell = pow(sim->dx, sim->dim);
+    for (int q = 0; q < sim->nopen; ++q) {
+        const ry_open_boundary *b = &sim->open[q];
+        if (b->type != RY_OPEN_OUTLET || !b->rate) continue;
+        double area = 1;
+        for (int d = 0; d < sim->dim; ++d)
+            if (d != b->axis) area *= b->hi[d] - b->lo[d];
+        const double u = fabs(b->velocity[b->axis]);
+        const double behind = u * area * sim->t - (double)b->count * cell;
+        const double v =
+            (double)b->sign * u * fmin(2.0, fmax(0.0, 1.0 + behind / (area * sim->dx)));
+        double *vel = ps->f[RY_F_VX + b->axis];
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (ps->kind[i] != RY_KIND_INLET) continue;
+            double x[3] = {0, 0, 0};
+            for (int d = 0; d < sim->dim; ++d) x[d] = ps->f[RY_F_X + d][i];
+            if (rate_zone(sim, x) == q) vel[i] = v;
+        }
+    }
+}
+
 ry_status ry_open_update(ry_sim *sim, ry_error *err) {
     if (sim->nopen == 0) return RY_OK;
     ry_particles *ps = &sim->ps;
@@ -211,7 +271,19 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
     for (size_t i = 0; i < n; ++i) {
         double x[3] = {0, 0, 0};
         for (int d = 0; d < dim; ++d) x[d] = ps->f[RY_F_X + d][i];
-        int in_outlet = 0; /* inside the zone of some outlet */
+        int in_outlet = 0;                  /* inside the zone of some outlet */
+        if (ps->kind[i] == RY_KIND_INLET) { /* a rate outlet's buffer: removed past its zone */
+            const int q = rate_zone(sim, x);
+            if (q >= 0) {
+                ry_open_boundary *b = &sim->open[q];
+                if (past(b, x, b->sign > 0 ? b->hi[b->axis] : b->lo[b->axis]) >= 0) {
+                    if ((st = mark_removed(&remove, n, i, err)) != RY_OK) goto done;
+                    nremove++;
+                    b->count++;
+                }
+                continue;
+            }
+        }
         for (int q = 0; q < sim->nopen; ++q) {
             ry_open_boundary *b = &sim->open[q];
             const double downstream = b->sign > 0 ? b->hi[b->axis] : b->lo[b->axis];
@@ -246,7 +318,20 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
             }
             if (b->type != RY_OPEN_OUTLET) continue;
             const int across = inside_across(b, x, dim);
-            if (sim->open_sink) { /* fluid past the downstream face is removed, nothing else */
+            if (b->rate && ps->kind[i] == RY_KIND_FLUID && across &&
+                past(b, x, upstream) >= 0) { /* into the buffer, at the outlet's velocity */
+                ps->kind[i] = RY_KIND_INLET; /* moves with the buffer (rate_speeds) */
+                for (int d = 0; d < dim; ++d) {
+                    ps->f[RY_F_VX + d][i] = 0;
+                    ps->f[RY_F_AX + d][i] = 0;
+                }
+                ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
+                ps->f[RY_F_DRHO][i] = 0;
+                in_outlet = 1;
+                break;
+            }
+            if (sim->open_sink &&
+                !b->rate) { /* fluid past the downstream face is removed, nothing else */
                 if (!(across && ps->kind[i] == RY_KIND_FLUID && past(b, x, downstream) >= 0))
                     continue;
                 if ((st = mark_removed(&remove, n, i, err)) != RY_OK) goto done;
@@ -282,6 +367,7 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
          * domain, and its speed would set the time step. */
         if (ps->kind[i] == RY_KIND_OUTLET && !in_outlet) ps->kind[i] = RY_KIND_FLUID;
     }
+    rate_speeds(sim);
     if (nspawn) {
         size_t first;
         st = ry_particles_add(ps, nspawn, &first, err);

@@ -423,6 +423,11 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
                  "%s: key '%s': scheme mps takes outlets at pressure 0 only (its outlets remove "
                  "the fluid at the downstream face, a free surface)",
                  ry_case_where(c, k, where, sizeof where), k);
+        snprintf(k, sizeof k, "open_boundaries[%d].type", q);
+        RY_CHECK(err, !sim->open[q].rate, RY_ERR_INPUT,
+                 "%s: key '%s': scheme mps takes no rate outlets (flow_rate or velocity): its "
+                 "outlets are sinks at pressure 0",
+                 ry_case_where(c, k, where, sizeof where), k);
     }
     for (size_t i = 0; i < ps->n; ++i) {
         ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
