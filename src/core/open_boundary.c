@@ -247,7 +247,9 @@ static void rate_speeds(ry_sim *sim) {
         for (int d = 0; d < sim->dim; ++d)
             if (d != b->axis) area *= b->hi[d] - b->lo[d];
         const double u = fabs(b->velocity[b->axis]);
-        const double behind = u * area * sim->t - (double)b->count * cell;
+        /* under MPI each rank counts its own removals (every rank calls this, in order) */
+        const double removed = sim->par ? sim->par->sum(sim, (double)b->count) : (double)b->count;
+        const double behind = u * area * sim->t - removed * cell;
         const double v =
             (double)b->sign * u * fmin(2.0, fmax(0.0, 1.0 + behind / (area * sim->dx)));
         double *vel = ps->f[RY_F_VX + b->axis];
