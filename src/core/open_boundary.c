@@ -332,8 +332,8 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 in_outlet = 1;
                 break;
             }
-            if (sim->open_sink &&
-                !b->rate) { /* fluid past the downstream face is removed, nothing else */
+            /* a sink (MPS): fluid past the downstream face is removed, nothing else */
+            if (sim->open_sink && !b->rate) {
                 if (!(across && ps->kind[i] == RY_KIND_FLUID && past(b, x, downstream) >= 0))
                     continue;
                 if ((st = mark_removed(&remove, n, i, err)) != RY_OK) goto done;
