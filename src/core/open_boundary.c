@@ -221,6 +221,15 @@ static ry_status mark_removed(uint8_t **remove, size_t n, size_t i, ry_error *er
     return RY_OK;
 }
 
+/* Records particle i of n as held in rate outlet q's buffer (the list allocated at the first). */
+static ry_status hold(size_t **held, size_t *nheld, size_t n, size_t i, int q, ry_error *err) {
+    if (!*held) *held = malloc(2 * n * sizeof **held);
+    RY_CHECK(err, *held != NULL, RY_ERR_NOMEM, "out of memory");
+    (*held)[2 * *nheld] = i;
+    (*held)[2 * (*nheld)++ + 1] = (size_t)q;
+    return RY_OK;
+}
+
 /* The rate outlet whose buffer a particle at x belongs to (within its cross-section, past its
  * upstream face), or -1. */
 static int rate_zone(const ry_sim *sim, const double *x) {
@@ -236,10 +245,12 @@ static int rate_zone(const ry_sim *sim, const double *x) {
  * keeps the volume removed at Q t: U = Q / A while it is on time, faster when it lags, by up to
  * twice U when a layer of the zone (A dx) behind, and slower when it runs ahead, at rest a
  * layer ahead. Fluid that crowds into the zone closer than the lattice's spacing therefore
- * does not leave faster than Q, nor does a zone that starts empty lag it for long. */
-static void rate_speeds(ry_sim *sim) {
-    ry_particles *ps = &sim->ps;
+ * does not leave faster than Q, nor does a zone that starts empty lag it for long. held: nheld
+ * pairs (particle, rate outlet), the buffer particles that stay. */
+static ry_status rate_speeds(ry_sim *sim, const size_t *held, size_t nheld, ry_error *err) {
     const double cell = pow(sim->dx, sim->dim);
+    double *v = calloc((size_t)sim->nopen, sizeof *v);
+    RY_CHECK(err, v != NULL, RY_ERR_NOMEM, "out of memory");
     for (int q = 0; q < sim->nopen; ++q) {
         const ry_open_boundary *b = &sim->open[q];
         if (b->type != RY_OPEN_OUTLET || !b->rate) continue;
@@ -250,16 +261,14 @@ static void rate_speeds(ry_sim *sim) {
         /* under MPI each rank counts its own removals (every rank calls this, in order) */
         const double removed = sim->par ? sim->par->sum(sim, (double)b->count) : (double)b->count;
         const double behind = u * area * sim->t - removed * cell;
-        const double v =
-            (double)b->sign * u * fmin(2.0, fmax(0.0, 1.0 + behind / (area * sim->dx)));
-        double *vel = ps->f[RY_F_VX + b->axis];
-        for (size_t i = 0; i < ps->n; ++i) {
-            if (ps->kind[i] != RY_KIND_INLET) continue;
-            double x[3] = {0, 0, 0};
-            for (int d = 0; d < sim->dim; ++d) x[d] = ps->f[RY_F_X + d][i];
-            if (rate_zone(sim, x) == q) vel[i] = v;
-        }
+        v[q] = (double)b->sign * u * fmin(2.0, fmax(0.0, 1.0 + behind / (area * sim->dx)));
     }
+    for (size_t k = 0; k < nheld; ++k) {
+        const ry_open_boundary *b = &sim->open[held[2 * k + 1]];
+        sim->ps.f[RY_F_VX + b->axis][held[2 * k]] = v[held[2 * k + 1]];
+    }
+    free(v);
+    return RY_OK;
 }
 
 ry_status ry_open_update(ry_sim *sim, ry_error *err) {
@@ -268,7 +277,8 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
     const int dim = sim->dim;
     size_t n = ps->n, nspawn = 0, nremove = 0;
     uint8_t *remove = NULL;
-    size_t *spawn = NULL; /* pairs (particle, inlet): copies enter upstream */
+    size_t *spawn = NULL;           /* pairs (particle, inlet): copies enter upstream */
+    size_t *held = NULL, nheld = 0; /* pairs (particle, rate outlet): its buffer that stays */
     ry_status st = RY_OK;
     for (size_t i = 0; i < n; ++i) {
         double x[3] = {0, 0, 0};
@@ -282,6 +292,8 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                     if ((st = mark_removed(&remove, n, i, err)) != RY_OK) goto done;
                     nremove++;
                     b->count++;
+                } else if ((st = hold(&held, &nheld, n, i, q, err)) != RY_OK) {
+                    goto done;
                 }
                 continue;
             }
@@ -329,6 +341,7 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
                 }
                 ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
                 ps->f[RY_F_DRHO][i] = 0;
+                if ((st = hold(&held, &nheld, n, i, q, err)) != RY_OK) goto done;
                 in_outlet = 1;
                 break;
             }
@@ -369,7 +382,7 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
          * domain, and its speed would set the time step. */
         if (ps->kind[i] == RY_KIND_OUTLET && !in_outlet) ps->kind[i] = RY_KIND_FLUID;
     }
-    rate_speeds(sim);
+    if ((st = rate_speeds(sim, held, nheld, err)) != RY_OK) goto done;
     if (nspawn) {
         size_t first;
         st = ry_particles_add(ps, nspawn, &first, err);
@@ -401,6 +414,7 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
 done:
     free(remove);
     free(spawn);
+    free(held);
     return st;
 }
 
