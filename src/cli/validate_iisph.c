@@ -409,6 +409,25 @@ static double oil_kept(double filled, double fluid_particles, double dx, double 
     return inflow > 0 ? filled * fluid_particles * pow(dx, 3) / inflow : NAN;
 }
 
+/* When the oil first reaches the drainage, read from an eye run's series (columns t, filled
+ * fraction, fluid particles, inflow volume): the first row after t_from where the oil kept is
+ * below 0.99, INFINITY if none. *inflow takes that row's inflow volume (NAN if none), and
+ * *kept_end the last row's oil kept. */
+static double oil_reaches(const ry_table *s, int ct, int cf, int cn, int ci, double dx,
+                          double t_from, double *inflow, double *kept_end) {
+    double reached = INFINITY, kept = NAN;
+    *inflow = NAN;
+    for (size_t r = 0; r < s->nrows; ++r) {
+        kept = oil_kept(ry_table_at(s, r, cf), ry_table_at(s, r, cn), dx, ry_table_at(s, r, ci));
+        if (ry_table_at(s, r, ct) > t_from && kept < 0.99 && !isfinite(reached)) {
+            reached = ry_table_at(s, r, ct);
+            *inflow = ry_table_at(s, r, ci);
+        }
+    }
+    *kept_end = kept;
+    return reached;
+}
+
 /* The filling at one output: filled fraction, oil-wall contact and the oil's share of the
  * injected volume (filled fraction x fluid particles x dx^3 over inflow_volume). */
 typedef struct eye_state {
@@ -589,14 +608,8 @@ int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, 
             ry_table_free(&s);
             continue;
         }
-        double kept = NAN;
-        reached[k] = INFINITY;
-        for (size_t r = 0; r < s.nrows; ++r) {
-            kept = oil_kept(ry_table_at(&s, r, cf), ry_table_at(&s, r, cn), dx,
-                            ry_table_at(&s, r, ci));
-            if (ry_table_at(&s, r, ct) > 0.2 && kept < 0.99 && !isfinite(reached[k]))
-                reached[k] = ry_table_at(&s, r, ct);
-        }
+        double kept, vin;
+        reached[k] = oil_reaches(&s, ct, cf, cn, ci, dx, 0.2, &vin, &kept);
         char when[32], ff[64], oc[64];
         if (isfinite(reached[k]))
             snprintf(when, sizeof when, "%.2f", reached[k]);
@@ -690,17 +703,11 @@ int ry_cli_validate_eye_clinical(const char *root, const char *out, int quick, i
         ry_table_free(&s);
         return 0;
     }
-    const double n0 = ry_table_at(&s, 0, cn), dx = 0.0015;
-    double drift = 0, reached = INFINITY, at_ml = NAN;
-    for (size_t r = 0; r < s.nrows; ++r) {
-        drift = fmax(drift, fabs(ry_table_at(&s, r, cn) / n0 - 1));
-        const double kept =
-            oil_kept(ry_table_at(&s, r, cf), ry_table_at(&s, r, cn), dx, ry_table_at(&s, r, ci));
-        if (ry_table_at(&s, r, ct) > 4.0 && kept < 0.99 && !isfinite(reached)) {
-            reached = ry_table_at(&s, r, ct);
-            at_ml = ry_table_at(&s, r, ci) * 1e6;
-        }
-    }
+    const double n0 = ry_table_at(&s, 0, cn), dx = 0.0015; /* the case's spacing */
+    double drift = 0, at_ml, kept_end;
+    for (size_t r = 0; r < s.nrows; ++r) drift = fmax(drift, fabs(ry_table_at(&s, r, cn) / n0 - 1));
+    const double reached = oil_reaches(&s, ct, cf, cn, ci, dx, 4.0, &at_ml, &kept_end);
+    at_ml *= 1e6;
     ry_table_free(&s);
     snprintf(mdp, sizeof mdp, "%s/eye_clinical.md", out);
     ry_atomic_file af = {0};
