@@ -67,6 +67,8 @@ double ry_pressure_jump(const ry_sim *sim, const double *centre, double r_in, do
 
 /* Largest speed of the fluid particles whose coordinate `axis` lies in [lo, hi]. */
 double ry_band_max_speed(const ry_sim *sim, int axis, double lo, double hi);
+/* Largest and rms speed of the fluid particles of one material (0 and 0 without any). */
+void ry_material_speeds(const ry_sim *sim, int material, double *vmax, double *vrms);
 
 /* Cavity centrelines against Ghia et al.: the case's profiles `u_vertical_centreline` (u along
  * x = L/2, bottom to top) and `v_horizontal_centreline` (v along y = L/2, left to right), time

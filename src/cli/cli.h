@@ -52,6 +52,9 @@ int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *
 int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *failures);
 /* Only its Rayleigh-Taylor part (ryushi validate rt). */
 int ry_cli_validate_rt(const char *root, const char *out, int quick, int *failures);
+/* Water and air in motion (IISPH with a light phase): the dam break under air and a standing
+ * wave (part of ry_cli_validate_iisph). */
+int ry_cli_validate_air(const char *root, const char *out, int quick, int *failures);
 /* The eye case in segments with slice pictures (validate_iisph.c). */
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, int *failures);

@@ -50,7 +50,7 @@ static void usage(FILE *fp) {
             "  ryushi bench neighbors [--quick] [--threads N]\n"
             "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
             "  ryushi validate "
-            "[dam_break|cavity|channel|cantilever|plate|buckling|mps|rheology|iisph|rt|\n"
+            "[dam_break|cavity|channel|cantilever|plate|buckling|mps|rheology|iisph|rt|air|\n"
             "          eye|eye_positions|eye_clinical|embolization|embolization3d|\n"
             "          embolization3d_all|"
             "embolization3d_wide|wetting|all] [--quick]\n"

@@ -467,14 +467,16 @@ int ry_cli_validate(int argc, char **argv) {
         strcmp(what, "channel") != 0 && strcmp(what, "cantilever") != 0 &&
         strcmp(what, "plate") != 0 && strcmp(what, "buckling") != 0 && strcmp(what, "mps") != 0 &&
         strcmp(what, "rheology") != 0 && strcmp(what, "iisph") != 0 && strcmp(what, "rt") != 0 &&
-        strcmp(what, "eye") != 0 && strcmp(what, "eye_positions") != 0 &&
-        strcmp(what, "eye_clinical") != 0 && strcmp(what, "embolization") != 0 &&
-        strcmp(what, "embolization3d") != 0 && strcmp(what, "embolization3d_all") != 0 &&
-        strcmp(what, "embolization3d_wide") != 0 && strcmp(what, "wetting") != 0) {
+        strcmp(what, "air") != 0 && strcmp(what, "eye") != 0 &&
+        strcmp(what, "eye_positions") != 0 && strcmp(what, "eye_clinical") != 0 &&
+        strcmp(what, "embolization") != 0 && strcmp(what, "embolization3d") != 0 &&
+        strcmp(what, "embolization3d_all") != 0 && strcmp(what, "embolization3d_wide") != 0 &&
+        strcmp(what, "wetting") != 0) {
         fprintf(
             stderr,
             "ryushi: validate: expected dam_break, cavity, channel, cantilever, plate, "
-            "buckling, mps, rheology, iisph, rt, eye, eye_positions, eye_clinical, embolization, "
+            "buckling, mps, rheology, iisph, rt, air, eye, eye_positions, eye_clinical, "
+            "embolization, "
             "embolization3d, embolization3d_all, embolization3d_wide, wetting or all, got '%s'\n",
             what);
         return 2;
@@ -494,6 +496,7 @@ int ry_cli_validate(int argc, char **argv) {
     if (all || strcmp(what, "iisph") == 0)
         ry_cli_validate_iisph(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "rt") == 0) ry_cli_validate_rt(v.root, v.out, v.quick, &v.failures);
+    if (strcmp(what, "air") == 0) ry_cli_validate_air(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "wetting") == 0) ry_cli_validate_wetting(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "eye") == 0) ry_cli_validate_eye(v.root, v.out, v.quick, &v.failures);
     if (strcmp(what, "eye_positions") == 0)

@@ -84,16 +84,21 @@ static void hydrostatic(const char *root, const char *out, int *failures) {
     irun_free(&r);
 }
 
-static void dam_break(const char *root, const char *out, int quick, int *failures) {
+/* Martin & Moyce's surge front (data/reference) into ref; 0 (a failure counted) if unreadable. */
+static int mm_reference(const char *root, ry_table *ref, int *failures) {
     ry_error err = {0};
     char ref_path[4096];
     snprintf(ref_path, sizeof ref_path,
              "%s/data/reference/martin_moyce1952_n2_2_surge_front_table2.csv", root);
+    if (ry_table_read(ref, ref_path, &err) == RY_OK) return 1;
+    fail(failures, &err);
+    return 0;
+}
+
+static void dam_break(const char *root, const char *out, int quick, int *failures) {
+    ry_error err = {0};
     ry_table ref;
-    if (ry_table_read(&ref, ref_path, &err) != RY_OK) {
-        fail(failures, &err);
-        return;
-    }
+    if (!mm_reference(root, &ref, failures)) return;
     const double a = 0.05715, g = 9.81, t_end = 0.18;
     const int per_a[2] = {20, 40}, nres = quick ? 1 : 2;
     ry_plot *p = NULL;
@@ -189,6 +194,149 @@ static void stacked(const char *root, const char *out, int quick, int *failures)
         verdict(failures, what, ke < 1e-3);
         irun_free(&r);
     }
+}
+
+/* Water and air (density ratio 1.2e-3, the air a light phase; docs/iisph.md, "A light phase")
+ * in motion: the Martin & Moyce column under air against the experiment and against the
+ * water alone, and a standing wave under air against linear theory. */
+static void air_water(const char *root, const char *out, int *failures) {
+    ry_error err = {0};
+    ry_table ref;
+    if (!mm_reference(root, &ref, failures)) return;
+    const double a = 0.05715, g = 9.81, t_end = 0.18;
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, 2, 1500, 600, &err) != RY_OK) {
+        ry_table_free(&ref);
+        fail(failures, &err);
+        return;
+    }
+    printf("Water and air (density ratio 1.2e-3, the air a light phase), %d thread(s)\n",
+           omp_get_max_threads());
+    ry_plot_panel(p, 0, "Martin & Moyce column under air (a/20)", "T = t sqrt(2g/a)",
+                  "Z = front / a", &err);
+    irun r[2];
+    int ok[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+        const char *sets[] = {"time.end=0.18", "time.output_interval=0.001", "output.vtk=false"};
+        ok[k] = run_case(root, out,
+                         k ? "cases/dam_break_mm_iisph.yaml" : "cases/dam_break_mm_iisph_air.yaml",
+                         k ? "iisph_mm_water" : "iisph_mm_air", 3, sets, &r[k], &err) == RY_OK;
+        if (!ok[k]) fail(failures, &err);
+    }
+    if (ok[0] && ok[1]) {
+        ry_front_cmp cmp[2];
+        for (int k = 0; k < 2; ++k)
+            if (ry_compare_front(&r[k].s, &ref, a, g, 3.0, &cmp[k], &err) != RY_OK)
+                fail(failures, &err);
+        /* the two fronts at the air run's rows up to T = 3 */
+        const int t0 = ry_table_col(&r[0].s, "t"), f0 = ry_table_col(&r[0].s, "front_x");
+        const int t1 = ry_table_col(&r[1].s, "t"), f1 = ry_table_col(&r[1].s, "front_x");
+        double dmax = NAN;
+        if (t0 >= 0 && f0 >= 0 && t1 >= 0 && f1 >= 0) {
+            double *ts = ry_table_column(&r[1].s, t1), *fs = ry_table_column(&r[1].s, f1);
+            dmax = 0;
+            for (size_t i = 0; ts && fs && i < r[0].s.nrows; ++i) {
+                const double t = ry_table_at(&r[0].s, i, t0);
+                if (t * sqrt(2 * g / a) > 3.0) break;
+                const double single = ry_interp_linear(ts, fs, r[1].s.nrows, t);
+                dmax = fmax(dmax, fabs(ry_table_at(&r[0].s, i, f0) - single) / a);
+            }
+            free(ts);
+            free(fs);
+        }
+        double wmax, wrms, amax, arms;
+        ry_material_speeds(&r[0].sim, 0, &wmax, &wrms);
+        ry_material_speeds(&r[0].sim, 1, &amax, &arms);
+        printf("  dam break (cases/dam_break_mm_iisph_air.yaml, %zu particles, %.2f s): front "
+               "against Martin & Moyce max|dZ| %.3f, rms %.3f, dT %.3f, rms after it %.3f (the "
+               "water alone: %.3f, %.3f, %.3f, %.3f); the two fronts "
+               "within %.3f a to T = 3\n",
+               r[0].sim.ps.n, t_end, cmp[0].max_dev, cmp[0].rms_dev, cmp[0].shift,
+               cmp[0].rms_dev_shifted, cmp[1].max_dev, cmp[1].rms_dev, cmp[1].shift,
+               cmp[1].rms_dev_shifted, dmax);
+        printf("  at %.2f s: water largest speed %.2f m/s (rms %.2f), air %.2f m/s (rms %.2f); "
+               "%ld steps against %ld, %.2f iterations per step against %.2f, wall %.1f s "
+               "against %.1f s\n",
+               t_end, wmax, wrms, amax, arms, r[0].stats.steps, r[1].stats.steps,
+               ry_column_max(&r[0].s, "iisph_iterations_mean"),
+               ry_column_max(&r[1].s, "iisph_iterations_mean"), r[0].stats.wall_s,
+               r[1].stats.wall_s);
+        verdict(failures, "air dam break: front RMS after the time shift <= 0.06",
+                cmp[0].rms_dev_shifted <= 0.06);
+        verdict(failures, "air dam break: front within 0.1 a of the single-phase run to T = 3",
+                dmax <= 0.1);
+        verdict(failures, "air dam break: mass exact, no particle outside, air slower than 3 m/s",
+                ry_mass_drift(&r[0].s) <= 1e-12 && ry_column_max(&r[0].s, "outside") == 0 &&
+                    amax < 3.0);
+        ry_cli_add_series(p, 0, "IISPH, water under air", &r[0].s, "t", sqrt(2 * g / a), "front_x",
+                          1 / a, ry_plot_style_line(), &err);
+        ry_plot_style st = ry_plot_style_line();
+        st.dash = RY_PLOT_DASH_DASHED;
+        ry_cli_add_series(p, 0, "IISPH, water alone", &r[1].s, "t", sqrt(2 * g / a), "front_x",
+                          1 / a, st, &err);
+    }
+    for (int k = 0; k < 2; ++k)
+        if (ok[k]) irun_free(&r[k]);
+    ry_cli_add_series(p, 0, "Martin & Moyce (1952)", &ref, "T", 1, "Z", 1,
+                      ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
+    ry_plot_xrange(p, 0, 0, 3.5, &err);
+    ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
+    ry_table_free(&ref);
+
+    /* The standing wave: two layers, omega^2 = g k (rho1 - rho2) / (rho1 coth(k h1) + rho2
+     * coth(k h2)) (Lamb 1932, art. 231). */
+    const double pi = 3.14159265358979323846, k = 2 * pi / 0.1, h1 = 0.05, h2 = 0.03;
+    const double w2 = g * k * (1000.0 - 1.2) / (1000.0 / tanh(k * h1) + 1.2 / tanh(k * h2));
+    const double T_th = 2 * pi / sqrt(w2);
+    ry_plot_panel(p, 1, "Standing wave under air (a0 = 2 mm, 50 per wavelength)", "t [s]",
+                  "wave amplitude [mm]", &err);
+    irun w;
+    const char *wsets[] = {"output.vtk=false"};
+    if (run_case(root, out, "cases/standing_wave_air.yaml", "standing_wave_air", 1, wsets, &w,
+                 &err) != RY_OK) {
+        fail(failures, &err);
+    } else {
+        const ry_oscillation osc = ry_series_oscillation(&w.s, "wave_amplitude");
+        const ry_oscillation_fit fit =
+            ry_fit_oscillation(&w.s, "wave_amplitude", 0.0, 1.0, 0.5 * T_th, 1.5 * T_th, 10.0);
+        double wmax, wrms, amax, arms;
+        ry_material_speeds(&w.sim, 0, &wmax, &wrms);
+        ry_material_speeds(&w.sim, 1, &amax, &arms);
+        const double vmax = ry_column_max_from(&w.s, "max_speed", 0.0);
+        printf("  standing wave (cases/standing_wave_air.yaml, %zu particles, 1 s): period %.4f s "
+               "from %d zero crossings, %.4f s fitted (decay %.2f 1/s), theory %.4f s (%+.1f %%, "
+               "%+.1f %%); largest speed %.3f m/s, at 1 s water %.3f m/s (rms %.3f), air %.3f "
+               "m/s (rms %.3f); %ld steps, wall %.1f s\n",
+               w.sim.ps.n, osc.period, osc.crossings, fit.period, fit.decay, T_th,
+               100 * (osc.period / T_th - 1), 100 * (fit.period / T_th - 1), vmax, wmax, wrms, amax,
+               arms, w.stats.steps, w.stats.wall_s);
+        verdict(failures, "standing wave under air: period within 3 % of linear theory",
+                fabs(osc.period / T_th - 1) <= 0.03);
+        verdict(failures, "standing wave under air: largest speed below 0.3 m/s", vmax < 0.3);
+        ry_cli_add_series(p, 1, "IISPH, water under air", &w.s, "t", 1, "wave_amplitude", 1e3,
+                          ry_plot_style_line(), &err);
+        enum { NT = 201 };
+        double tt[NT], aa[NT];
+        const int ca = ry_table_col(&w.s, "wave_amplitude");
+        const double a0 = ca >= 0 ? w.s.data[ca] : 0.0;
+        for (int i = 0; i < NT; ++i) {
+            tt[i] = i / (double)(NT - 1);
+            aa[i] = 1e3 * a0 * cos(2 * pi * tt[i] / T_th);
+        }
+        ry_plot_style st = ry_plot_style_line();
+        st.dash = RY_PLOT_DASH_DASHED;
+        st.color = 7;
+        ry_plot_series(p, 1, "linear theory, undamped", NT, tt, aa, st, &err);
+        ry_plot_legend(p, 1, RY_PLOT_LEGEND_NE, &err);
+        irun_free(&w);
+    }
+    char png[4096];
+    snprintf(png, sizeof png, "%s/iisph_air_water.png", out);
+    if (ry_plot_write_png(p, png, &err) != RY_OK)
+        fail(failures, &err);
+    else
+        printf("  plot: %s\n", png);
+    ry_plot_free(p);
 }
 
 /* Square drop relaxing to a circle: the pressure jump against sigma / R. */
@@ -759,10 +907,17 @@ int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *fai
     hydrostatic(root, out, failures);
     dam_break(root, out, quick, failures);
     stacked(root, out, quick, failures);
+    air_water(root, out, failures);
     square_drop(root, out, failures);
     free_drop(root, out, quick, failures, "iisph", 0.06, 0.05);
     free_drop(root, out, quick, failures, "wcsph", 0.20, 0.15);
     rayleigh_taylor(root, out, quick, failures);
+    return 0;
+}
+
+int ry_cli_validate_air(const char *root, const char *out, int quick, int *failures) {
+    (void)quick;
+    air_water(root, out, failures);
     return 0;
 }
 

@@ -67,17 +67,31 @@ static ry_status probe_outside(const ry_sim *sim, double *v, ry_error *err) {
     return RY_OK;
 }
 
-/* Surge front: the leading edge (largest x) of the fluid body on the floor. Fluid particles
- * within 3 spacings of the lowest fluid particle are binned along x in bins one spacing wide;
- * starting from the leftmost occupied bin, the body continues while gaps are at most one empty
- * bin. Spray ahead of the body (separated by two or more empty bins) does not count. The
- * front is the largest x of a particle in the body plus half a spacing (the particle's extent). */
+/* The densest material of the fluid particles (of a liquid under air, the liquid); 0 without
+ * fluid. */
+static int densest_material(const ry_sim *sim) {
+    const ry_particles *ps = &sim->ps;
+    int dense = -1;
+    for (size_t i = 0; i < ps->n; ++i)
+        if (ps->kind[i] == RY_KIND_FLUID &&
+            (dense < 0 || sim->mat[ps->material[i]].density > sim->mat[dense].density))
+            dense = ps->material[i];
+    return dense < 0 ? 0 : dense;
+}
+
+/* Surge front: the leading edge (largest x) of the fluid body on the floor (of the densest fluid
+ * material: the water under air). Fluid particles within 3 spacings of the lowest fluid particle
+ * are binned along x in bins one spacing wide; starting from the leftmost occupied bin, the body
+ * continues while gaps are at most one empty bin. Spray ahead of the body (separated by two or
+ * more empty bins) does not count. The front is the largest x of a particle in the body plus
+ * half a spacing (the particle's extent). */
 static ry_status probe_front_x(const ry_sim *sim, double *v, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const int up = sim->dim - 1;
     double ymin = INFINITY, xmin = INFINITY, xmax = -INFINITY;
+    const int dense = densest_material(sim);
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] != dense) continue;
         ymin = fmin(ymin, ps->f[RY_F_X + up][i]);
     }
     if (!isfinite(ymin)) {
@@ -86,7 +100,9 @@ static ry_status probe_front_x(const ry_sim *sim, double *v, ry_error *err) {
     }
     double band = ymin + 3 * sim->dx;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID || ps->f[RY_F_X + up][i] > band) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] != dense ||
+            ps->f[RY_F_X + up][i] > band)
+            continue;
         xmin = fmin(xmin, ps->f[RY_F_X][i]);
         xmax = fmax(xmax, ps->f[RY_F_X][i]);
     }
@@ -95,7 +111,9 @@ static ry_status probe_front_x(const ry_sim *sim, double *v, ry_error *err) {
     RY_CHECK(err, edge != NULL, RY_ERR_NOMEM, "out of memory (front_x)");
     for (size_t b = 0; b < nb; ++b) edge[b] = -INFINITY;
     for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_FLUID || ps->f[RY_F_X + up][i] > band) continue;
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] != dense ||
+            ps->f[RY_F_X + up][i] > band)
+            continue;
         double x = ps->f[RY_F_X][i];
         size_t b = (size_t)((x - xmin) / sim->dx);
         if (b >= nb) b = nb - 1;
@@ -404,6 +422,46 @@ static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *
     return RY_OK;
 }
 
+/* A standing wave (2D): the top surface of the densest fluid material (with air above water:
+ * the water), in columns one spacing wide across its x-range widened by half a spacing each
+ * side (width W from x_lo), each column's height h_b its highest particle; the amplitude of the
+ * mode a cos(2 pi (x - x_lo) / W), a = (2 / N) sum_b h_b cos(2 pi (b + 1/2) / N) over the N
+ * columns. a > 0: the surface is higher at x_lo than at the middle. */
+static ry_status probe_wave_amplitude(const ry_sim *sim, double *v, ry_error *err) {
+    RY_CHECK(err, sim->dim == 2, RY_ERR_INPUT, "measurement 'wave_amplitude' needs dimension 2");
+    const ry_particles *ps = &sim->ps;
+    const int dense = densest_material(sim);
+    double xlo = INFINITY, xhi = -INFINITY;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] != dense) continue;
+        xlo = fmin(xlo, ps->f[RY_F_X][i]);
+        xhi = fmax(xhi, ps->f[RY_F_X][i]);
+    }
+    *v = 0;
+    if (!(xhi >= xlo)) return RY_OK;
+    const size_t nb = (size_t)floor((xhi - xlo) / sim->dx + 0.5) + 1;
+    double *h = malloc(nb * sizeof *h);
+    RY_CHECK(err, h != NULL, RY_ERR_NOMEM, "out of memory (wave_amplitude)");
+    for (size_t b = 0; b < nb; ++b) h[b] = -INFINITY;
+    xlo -= 0.5 * sim->dx;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] != dense) continue;
+        const size_t b = (size_t)((ps->f[RY_F_X][i] - xlo) / sim->dx);
+        const size_t c = b < nb ? b : nb - 1;
+        h[c] = fmax(h[c], ps->f[RY_F_Y][i]);
+    }
+    double sum = 0;
+    size_t used = 0;
+    for (size_t b = 0; b < nb; ++b) {
+        if (!isfinite(h[b])) continue;
+        sum += h[b] * cos(2.0 * 3.14159265358979323846 * ((double)b + 0.5) / (double)nb);
+        ++used;
+    }
+    free(h);
+    if (used) *v = 2.0 * sum / (double)used;
+    return RY_OK;
+}
+
 /* Interface of two fluids stacked in a box one wavelength wide (2D; Rayleigh-Taylor): the
  * amplitude a of the mode a cos(2 pi (x - x_lo) / W) of the interface height, W = x_hi - x_lo
  * the width of the fluid (its particles' x-range widened by half a spacing each side). The
@@ -497,6 +555,10 @@ static const ry_probe p_interface = {
     "2D, two fluids in a box one wavelength wide: amplitude of the interface mode "
     "cos(2 pi x / width) [m]",
     probe_interface_amplitude};
+static const ry_probe p_wave = {
+    "wave_amplitude",
+    "2D: amplitude of the mode cos(2 pi x / width) of the top surface of the densest fluid [m]",
+    probe_wave_amplitude};
 static const ry_probe p_droplet_length = {
     "droplet_length",
     "section droplet: vertical extent of the droplet attached to the nozzle below its tip [m]",
@@ -526,6 +588,7 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_filled,
                                              &p_oil_wall,
                                              &p_interface,
+                                             &p_wave,
                                              &p_iters,
                                              &p_iters_mean,
                                              &p_kin,

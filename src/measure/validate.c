@@ -331,6 +331,22 @@ double ry_band_max_speed(const ry_sim *sim, int axis, double lo, double hi) {
     return m;
 }
 
+void ry_material_speeds(const ry_sim *sim, int material, double *vmax, double *vrms) {
+    const ry_particles *ps = &sim->ps;
+    double v2max = 0, v2sum = 0;
+    size_t count = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID || ps->material[i] != material) continue;
+        double v2 = 0;
+        for (int d = 0; d < sim->dim; ++d) v2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        v2max = fmax(v2max, v2);
+        v2sum += v2;
+        ++count;
+    }
+    *vmax = sqrt(v2max);
+    *vrms = count ? sqrt(v2sum / (double)count) : 0.0;
+}
+
 /* Residual of the best A e^(n t) + B e^(-n t) for a fixed n (relative weights 1 / a). */
 static double growth_residual(const double *t, const double *a, int m, double n, double *A,
                               double *B) {

@@ -24,6 +24,9 @@
  *                  (Ihmsen et al. 2014, eq. 12-17); warm start p^0 = w p(t - dt); stops
  *                  when the average density error is below the tolerance (after at least
  *                  min_iterations)
+ *  light phase     a material lighter than 0.05 of the heaviest (air) solved with the heavy
+ *                  particles as moving walls, and left out of the heavy phase's sums
+ *                  (scheme.light_phase: boundary; docs/iisph.md, "A light phase")
  *  time            symplectic Euler: v = v* + dt a^p, x += dt v;
  *                  dt = min(CFL h / |v|max, 0.25 sqrt(h / |a|max), 0.045 h^2 / nu_max,
  *                  surface-tension limit, dt_max). */
@@ -113,11 +116,77 @@ typedef struct iisph {
     long viters_last, viters_total;
     wall_map wm;
     grad_list gl;
+    /* A light phase as a moving boundary (scheme.light_phase: boundary; docs/iisph.md, "A light
+     * phase"): */
+    int light_on;       /* some fluid material is light */
+    uint8_t *light_mat; /* per material: light (density below RY_IISPH_LIGHT of the heaviest) */
+    uint8_t *lt;        /* per particle: a mobile particle of a light material */
+    double *pl;         /* per particle: the pressure a light row reads at a wall-like neighbour */
+    wall_map wml;       /* the light rows' extrapolation: walls and heavy fluid from light fluid */
 } iisph;
+
+/* A material lighter than this share of the heaviest is light (air against water: 1.2e-3). */
+#define RY_IISPH_LIGHT 0.05
 
 /* Kinds that move under the fluid equations (and take part as fluid): fluid and outlet
  * buffers; the pressure is solved for fluid only (outlet buffers keep the outlet pressure). */
 static const int MOBILE[RY_KIND_COUNT] = {[RY_KIND_FLUID] = 1, [RY_KIND_OUTLET] = 1};
+
+/* The pair (i, j) with a light phase as a moving boundary (docs/iisph.md, "A light phase").
+ * A heavy row i leaves its light neighbours j out (pair_skip: not in its pair lists): its
+ * interface is a free surface. A light row i counts its heavy neighbours j as walls that move:
+ * in its number density and its viscosity (no slip, with v_j), in its continuity with v*_j
+ * and the pressure displacement D_j of the heavy solve's current iterate, and in its force
+ * with the light phase's pressure extrapolated onto j (pair_force_mobile is 0). */
+static inline int pair_skip(const iisph *s, size_t i, uint32_t j) {
+    return s->light_on && !s->lt[i] && s->lt[j];
+}
+static inline int pair_force_mobile(const iisph *s, const uint8_t *kind, size_t i, uint32_t j) {
+    return MOBILE[kind[j]] && (!s->light_on || !s->lt[i] || s->lt[j]);
+}
+
+/* scheme.light_phase: with boundary (the default) a material lighter than RY_IISPH_LIGHT of the
+ * heaviest is light, and the light and heavy phases are solved as two incompressible fluids,
+ * each with the other as its boundary: the heavy phase does not see the light one (its
+ * interface is a free surface, p >= 0), the light phase sees the heavy particles as moving
+ * walls with their velocity and its own pressure extrapolated onto them (docs/iisph.md, "A
+ * light phase"). The couplings this does not define are refused. */
+static ry_status light_phase_init(ry_sim *sim, iisph *s, ry_case *c, ry_error *err) {
+    static const char *const modes[] = {"coupled", "boundary", NULL};
+    int boundary;
+    RY_TRY(ry_case_choice(c, "scheme.light_phase", "boundary", modes, &boundary, err));
+    s->light_mat = calloc((size_t)sim->nmat, 1);
+    RY_CHECK(err, s->light_mat != NULL, RY_ERR_NOMEM, "out of memory");
+    /* the materials of the fluid, and of what inlets and outlets carry */
+    const ry_particles *ps = &sim->ps;
+    for (size_t i = 0; i < ps->n; ++i)
+        if (MOBILE[ps->kind[i]] || ps->kind[i] == RY_KIND_INLET) s->light_mat[ps->material[i]] = 2;
+    double rmax = 0;
+    for (int m = 0; m < sim->nmat; ++m)
+        if (s->light_mat[m]) rmax = fmax(rmax, sim->mat[m].density);
+    for (int m = 0; m < sim->nmat; ++m) {
+        s->light_mat[m] =
+            boundary && s->light_mat[m] && sim->mat[m].density < RY_IISPH_LIGHT * rmax;
+        s->light_on |= s->light_mat[m];
+    }
+    if (!s->light_on) return RY_OK;
+    int light = 0;
+    while (!s->light_mat[light]) ++light;
+    const char *key = s->st.model != RY_ST_NONE ? "surface_tension.model"
+                      : s->implicit             ? "scheme.viscosity"
+                                                : NULL;
+    if (!key && s->rheo.on) key = "scheme.light_phase";
+    char where[256];
+    RY_CHECK(err, key == NULL, RY_ERR_INPUT,
+             "%s: key '%s': not available with a light phase (material '%s' is lighter than %g "
+             "of the heaviest, and scheme.light_phase is boundary%s); set scheme.light_phase: "
+             "coupled",
+             ry_case_where(c, key ? key : "scheme", where, sizeof where), key ? key : "",
+             sim->mat[light].name, RY_IISPH_LIGHT,
+             key && strcmp(key, "scheme.light_phase") == 0 ? ", with a non-Newtonian material"
+                                                           : "");
+    return RY_OK;
+}
 
 static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
     iisph *s = calloc(1, sizeof *s);
@@ -203,6 +272,7 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
                  ry_case_where(c, "scheme.viscous_form", where, sizeof where), sim->mat[m].name,
                  ry_rheology_names[sim->mat[m].rheo.model]);
     }
+    RY_TRY(light_phase_init(sim, s, c, err));
     ry_particles *ps = &sim->ps;
     int no = 0, hydro;
     RY_TRY(ry_case_bool(c, "scheme.hydrostatic_init", &no, &hydro, err));
@@ -223,6 +293,15 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     return RY_OK;
 }
 
+static void wall_map_free(wall_map *m) {
+    free(m->w);
+    free(m->j);
+    free(m->off);
+    free(m->cnt);
+    free(m->wt);
+    free(m->h);
+}
+
 static void iisph_free(void *state) {
     iisph *s = state;
     if (!s) return;
@@ -237,15 +316,14 @@ static void iisph_free(void *state) {
     free(s->vx);
     free(s->vown);
     ry_st_work_free(&s->stw);
-    free(s->wm.w);
-    free(s->wm.j);
-    free(s->wm.off);
-    free(s->wm.cnt);
-    free(s->wm.wt);
-    free(s->wm.h);
+    wall_map_free(&s->wm);
     free(s->gl.off);
     free(s->gl.j);
     free(s->gl.g);
+    free(s->light_mat);
+    free(s->lt);
+    free(s->pl);
+    wall_map_free(&s->wml);
     free(s);
 }
 
@@ -264,6 +342,11 @@ static ry_status ensure(iisph *s, size_t n, ry_error *err) {
     s->acc = b + 10 * cap;
     for (int d = 0; d < 3; ++d) s->vg[d] = b + (13 + d) * cap;
     s->cap = cap;
+    uint8_t *lt = realloc(s->lt, cap);
+    if (lt) s->lt = lt;
+    double *pl = realloc(s->pl, cap * sizeof *pl);
+    if (pl) s->pl = pl;
+    RY_CHECK(err, lt && pl, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
     return RY_OK;
 }
 
@@ -322,9 +405,10 @@ static inline void force_row(const ry_sim *sim, const iisph *s, size_t i, const 
         for (size_t q = off[i]; !s->implicit && q < end[i]; ++q) {
             const uint32_t j = nb[q];
             const double *P = cv + q * RY_PAIR_STRIDE;
-            if (P[RY_PW_W] == 0) continue;
-            const int wall = !MOBILE[kind[j]];
-            if (wall && s->slip) continue;
+            if (P[RY_PW_W] == 0 || pair_skip(s, i, j)) continue;
+            /* a light row's heavy neighbour is a wall to it, always without slip */
+            const int wall = !pair_force_mobile(s, kind, i, j);
+            if (!MOBILE[kind[j]] && s->slip) continue;
             const double muj = wall ? mui : dyn_viscosity(sim, s, j);
             if (mui + muj <= 0) continue;
             const double mu = 2 * mui * muj / (mui + muj);
@@ -363,7 +447,8 @@ static ry_status densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
     for (size_t i = 0; i < n; ++i) {
         double sw = w0;
         if (MOBILE[kind[i]])
-            for (size_t q = off[i]; q < end[i]; ++q) sw += cv[q * RY_PAIR_STRIDE + RY_PW_W];
+            for (size_t q = off[i]; q < end[i]; ++q)
+                if (!pair_skip(s, i, s->pc.j[q])) sw += cv[q * RY_PAIR_STRIDE + RY_PW_W];
         delta[i] = sw;
     }
     if (sim->par) sim->par->sync(sim, delta, 1); /* halo copies: their owners' values */
@@ -516,8 +601,22 @@ static ry_status viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *er
 /* Wall and inlet particles: pressure extrapolated from the fluid with the hydrostatic term,
  * Adami, Hu & Adams (2012), eq. 27, p_w = sum_f (p_f + rho_f g . x_wf) W_wf / sum_f W_wf,
  * from the current iterate (not negative). wall_map_build sets the walls without a mobile
- * neighbour to 0 and lists the others' terms; wall_extrapolate sums them in the same order. */
-static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err) {
+ * neighbour to 0 and lists the others' terms; wall_extrapolate sums them in the same order.
+ * Two maps: RY_MAP_WALL, the walls from the (heavy) fluid into the pressure field; with a light
+ * phase also RY_MAP_LIGHT, the walls and the heavy fluid from the light fluid into s->pl. */
+enum { RY_MAP_WALL, RY_MAP_LIGHT };
+static inline int wall_target(const iisph *s, const uint8_t *kind, size_t i, int map) {
+    return kind[i] == RY_KIND_WALL || kind[i] == RY_KIND_INLET ||
+           (map == RY_MAP_LIGHT && MOBILE[kind[i]] && !s->lt[i]);
+}
+static inline int wall_source(const iisph *s, const uint8_t *kind, size_t j, int map) {
+    return MOBILE[kind[j]] && (map == RY_MAP_LIGHT ? s->lt[j] : !s->light_on || !s->lt[j]);
+}
+
+/* Builds map m of kind `map` (above), setting the targets without a source neighbour to 0 in
+ * p. */
+static ry_status wall_map_build(ry_sim *sim, iisph *s, wall_map *m, double *p, int map,
+                                ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
@@ -526,7 +625,6 @@ static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err)
     const size_t *end = s->pc.end;
     const uint8_t *kind = ps->kind;
     const double *cv = s->pc.v, *rho = ps->f[RY_F_RHO];
-    wall_map *m = &s->wm;
     if (m->cap_n < n + 1) {
         const size_t c = n + n / 4 + 16;
         int ok = 1;
@@ -539,15 +637,15 @@ static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err)
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < n; ++i) {
         size_t c = 0;
-        if (kind[i] == RY_KIND_WALL || kind[i] == RY_KIND_INLET)
+        if (wall_target(s, kind, i, map))
             for (size_t q = off[i]; q < end[i]; ++q)
-                c += MOBILE[kind[nb[q]]] && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
+                c += wall_source(s, kind, nb[q], map) && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
         m->cnt[i] = c;
     }
     m->nw = 0;
     m->off[0] = 0;
     for (size_t i = 0; i < n; ++i) {
-        if (kind[i] != RY_KIND_WALL && kind[i] != RY_KIND_INLET) continue;
+        if (!wall_target(s, kind, i, map)) continue;
         if (m->cnt[i] == 0) {
             p[i] = 0.0;
             continue;
@@ -573,7 +671,7 @@ static ry_status wall_map_build(ry_sim *sim, iisph *s, double *p, ry_error *err)
         for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
             const double *P = cv + q * RY_PAIR_STRIDE;
-            if (!MOBILE[kind[j]] || P[RY_PW_W] == 0) continue;
+            if (!wall_source(s, kind, j, map) || P[RY_PW_W] == 0) continue;
             double gr = 0;
             for (int d = 0; d < dim; ++d) gr += sim->gravity[d] * P[RY_PW_DX + d];
             m->j[e] = j;
@@ -606,7 +704,8 @@ static ry_status grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
     for (size_t i = 0; i < n; ++i) {
         size_t c = 0;
         if (MOBILE[kind[i]])
-            for (size_t q = off[i]; q < end[i]; ++q) c += RY_GRAD_NONZERO(cv + q * RY_PAIR_STRIDE);
+            for (size_t q = off[i]; q < end[i]; ++q)
+                c += RY_GRAD_NONZERO(cv + q * RY_PAIR_STRIDE) && !pair_skip(s, i, nb[q]);
         l->off[i + 1] = c;
     }
     l->off[0] = 0;
@@ -626,7 +725,7 @@ static ry_status grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
         if (!MOBILE[kind[i]]) continue;
         for (size_t q = off[i]; q < end[i]; ++q) {
             const double *P = cv + q * RY_PAIR_STRIDE;
-            if (!RY_GRAD_NONZERO(P)) continue;
+            if (!RY_GRAD_NONZERO(P) || pair_skip(s, i, nb[q])) continue;
             l->j[e] = nb[q];
             for (int d = 0; d < 3; ++d) l->g[3 * e + d] = P[RY_PW_GX + d];
             e++;
@@ -636,8 +735,8 @@ static ry_status grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
     return RY_OK;
 }
 
-static void wall_extrapolate(const iisph *s, double *p) {
-    const wall_map *m = &s->wm;
+/* The targets of map m into out from the sources' pressures p (out may be p). */
+static void wall_extrapolate(const wall_map *m, const double *p, double *out) {
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t k = 0; k < m->nw; ++k) {
         double sw = 0, sp = 0;
@@ -645,25 +744,34 @@ static void wall_extrapolate(const iisph *s, double *p) {
             sw += m->wt[e];
             sp += (p[m->j[e]] + m->h[e]) * m->wt[e];
         }
-        p[m->w[k]] = fmax(sp / sw, 0.0); /* sw > 0: every entry has W > 0 */
+        out[m->w[k]] = fmax(sp / sw, 0.0); /* sw > 0: every entry has W > 0 */
     }
 }
 
-/* S_i = sum_j d_ij p_j = -(dt^2 / m_i) sum_j p_j / delta_j^2 grad_i W_ij over mobile j, and
- * over walls with their extrapolated pressure and the volume of i. Row i, inlined with a
- * literal dim so that the sums stay in registers. */
-static inline void pressure_sum_row(const grad_list *gl, const uint8_t *kind, const double *m,
-                                    const double *delta, const double *p, double dt2, size_t i,
-                                    double *out, int dim) {
+/* sum_j (p_j / delta_j^2) grad_i W_ij over the pairs of row i: over mobile j, and over walls
+ * with their extrapolated pressure and the volume of i (a light row: the walls and the heavy
+ * particles with the light phase's extrapolation pl). Inlined with a literal dim so that the
+ * sums stay in registers. */
+static inline void neighbour_pressure_sum(const iisph *s, const uint8_t *kind, const double *p,
+                                          size_t i, double *a, int dim) {
+    const grad_list *gl = &s->gl;
+    const double *delta = s->delta, *pw = s->light_on && s->lt[i] ? s->pl : p;
+    const double di2 = delta[i] * delta[i];
+    for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
+        const uint32_t j = gl->j[e];
+        const double *G = gl->g + 3 * e;
+        const double f =
+            pair_force_mobile(s, kind, i, j) ? p[j] / (delta[j] * delta[j]) : pw[j] / di2;
+        for (int d = 0; d < dim; ++d) a[d] += f * G[d];
+    }
+}
+
+/* S_i = sum_j d_ij p_j = -(dt^2 / m_i) sum_j p_j / delta_j^2 grad_i W_ij (row i). */
+static inline void pressure_sum_row(const iisph *s, const uint8_t *kind, const double *m,
+                                    const double *p, double dt2, size_t i, double *out, int dim) {
     double a[3] = {0, 0, 0};
     if (MOBILE[kind[i]]) {
-        const double di2 = delta[i] * delta[i];
-        for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-            const uint32_t j = gl->j[e];
-            const double *G = gl->g + 3 * e;
-            const double f = MOBILE[kind[j]] ? p[j] / (delta[j] * delta[j]) : p[j] / di2;
-            for (int d = 0; d < dim; ++d) a[d] += f * G[d];
-        }
+        neighbour_pressure_sum(s, kind, p, i, a, dim);
         for (int d = 0; d < dim; ++d) a[d] *= -dt2 / m[i];
     }
     for (int d = 0; d < 3; ++d) out[d] = a[d];
@@ -673,16 +781,15 @@ static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    const grad_list *gl = &s->gl;
     const uint8_t *kind = ps->kind;
-    const double *m = ps->f[RY_F_MASS], *delta = s->delta;
+    const double *m = ps->f[RY_F_MASS];
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         double *out = s->sum + 3 * i;
         if (dim == 3)
-            pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, 3);
+            pressure_sum_row(s, kind, m, p, dt2, i, out, 3);
         else
-            pressure_sum_row(gl, kind, m, delta, p, dt2, i, out, 2);
+            pressure_sum_row(s, kind, m, p, dt2, i, out, 2);
     }
 }
 
@@ -699,9 +806,10 @@ static inline double jacobi_rest(const iisph *s, const grad_list *gl, const uint
         double t = 0;
         for (int d = 0; d < dim; ++d) t += si[d] * G[d];
         if (MOBILE[kind[j]]) {
-            /* D_j without the part from p_i: d_jj p_j + S_j - d_ji p_i */
+            /* D_j without the part from p_i: d_jj p_j + S_j - d_ji p_i (a heavy j of a light
+             * row: none, j does not see i) */
             const double *sj = s->sum + 3 * j, *djj = s->dii + 3 * j;
-            const double cji = dt2 / (m[j] * di2) * p[i]; /* d_ji p_i = cji grad_i W_ij */
+            const double cji = pair_force_mobile(s, kind, i, j) ? dt2 / (m[j] * di2) * p[i] : 0.0;
             for (int d = 0; d < dim; ++d) t -= (djj[d] * p[j] + sj[d] - cji * G[d]) * G[d];
         }
         rest += t;
@@ -762,15 +870,22 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
             }
             a += dg;
             /* - d_ji . grad_i W_ij, d_ji = -(dt^2 / m_j) grad_j W_ji / delta_i^2 */
-            if (MOBILE[kind[j]]) a -= dt2 / (m[j] * di2) * g2;
+            if (pair_force_mobile(s, kind, i, j)) a -= dt2 / (m[j] * di2) * g2;
         }
         s->aii[i] = a;
     }
     /* Warm start. */
     for (size_t i = 0; i < n; ++i)
         if (kind[i] == RY_KIND_FLUID) p[i] *= s->warm;
-    double nfluid = 0;
-    for (size_t i = 0; i < n; ++i) nfluid += kind[i] == RY_KIND_FLUID && !ry_sim_is_halo(sim, i);
+    /* The error is averaged over each phase (heavy and light) apart when the light phase is a
+     * boundary: their two solves are independent, and the light phase's many particles would
+     * otherwise outvote the heavy one's. */
+    double nfluid = 0, nlight = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (kind[i] == RY_KIND_FLUID && !ry_sim_is_halo(sim, i)) {
+            nfluid += !s->lt[i];
+            nlight += s->lt[i];
+        }
     /* A distributed run: a pass that reads its neighbours' results of the pass before gets
      * the halo copies' values from their owners first; the error is summed over all ranks. */
     if (sim->par) {
@@ -778,17 +893,22 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
         sim->par->sync(sim, s->aii, 1);
         sim->par->sync(sim, s->dstar, 1);
         nfluid = sim->par->sum(sim, nfluid);
+        nlight = sim->par->sum(sim, nlight);
     }
     const double omega = s->omega;
     long it = 0;
     double avg = 0;
     while (it < s->max_iter) {
-        wall_extrapolate(s, p);
+        wall_extrapolate(&s->wm, p, p);
         if (sim->par) sim->par->sync(sim, p, 1);
+        if (s->light_on) {
+            wall_extrapolate(&s->wml, p, s->pl);
+            if (sim->par) sim->par->sync(sim, s->pl, 1);
+        }
         pressure_sums(sim, s, p, dt2);
         if (sim->par) sim->par->sync(sim, s->sum, 3);
-        double esum = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : esum)
+        double esum = 0, lsum = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : esum, lsum)
         for (size_t i = 0; i < n; ++i) {
             if (kind[i] != RY_KIND_FLUID) {
                 pnew[i] = p[i];
@@ -808,15 +928,22 @@ static long pressure_solve(ry_sim *sim, iisph *s, double dt) {
             pnew[i] = dirichlet ? pmin : pn > 0 ? pn : 0;
             /* Ihmsen's average density error: clamped (free-surface) particles count only when
              * compressed. */
-            esum += (p[i] > pmin || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
+            const double e = (p[i] > pmin || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
+            if (s->lt[i])
+                lsum += e;
+            else
+                esum += e;
         }
         memcpy(p, pnew, n * sizeof *p);
         if (sim->par) {
             sim->par->sync(sim, p, 1);
             esum = sim->par->sum(sim, esum);
+            if (s->light_on) lsum = sim->par->sum(sim, lsum);
         }
         ++it;
         avg = nfluid > 0 ? esum / (nfluid * d0) : 0.0;
+        const double lavg = nlight > 0 ? lsum / (nlight * d0) : 0.0;
+        if (fabs(lavg) > fabs(avg)) avg = lavg;
         if (it >= s->min_iter && fabs(avg) <= s->tol) break;
     }
     s->error_last = avg;
@@ -942,8 +1069,10 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     const int dim = sim->dim;
     RY_TRY(ensure(s, n, err));
     /* Particles created by open boundaries get their mass here. */
-    for (size_t i = 0; i < n; ++i)
+    for (size_t i = 0; i < n; ++i) {
         ps->f[RY_F_MASS][i] = sim->mat[ps->material[i]].density / s->delta0;
+        s->lt[i] = s->light_on && MOBILE[ps->kind[i]] && s->light_mat[ps->material[i]];
+    }
     static const int need[RY_KIND_COUNT] = {
         [RY_KIND_FLUID] = 1, [RY_KIND_OUTLET] = 1, [RY_KIND_WALL] = 1, [RY_KIND_INLET] = 1};
     RY_TRY(ry_pair_cache_fill(&s->pc, sim, need, err));
@@ -959,7 +1088,10 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     if (s->implicit) RY_TRY(viscous_implicit(sim, s, dt, err));
     if (sim->par)
         for (int d = 0; d < dim; ++d) sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
-    RY_TRY(wall_map_build(sim, s, ps->f[RY_F_P], err));
+    RY_TRY(wall_map_build(sim, s, &s->wm, ps->f[RY_F_P], RY_MAP_WALL, err));
+    if (s->light_on) {
+        RY_TRY(wall_map_build(sim, s, &s->wml, s->pl, RY_MAP_LIGHT, err));
+    }
     RY_TRY(grad_list_build(sim, s, err));
     const long it = pressure_solve(sim, s, dt);
     s->iters_last = it;
@@ -973,11 +1105,12 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[ps->kind[i]]) continue;
         const double pi = p[i] / (delta[i] * delta[i]);
+        const double *pw = s->light_on && s->lt[i] ? s->pl : p;
         double a[3] = {0, 0, 0};
         for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
             const uint32_t j = gl->j[e];
-            const double pj =
-                p[j] / (MOBILE[ps->kind[j]] ? delta[j] * delta[j] : delta[i] * delta[i]);
+            const double pj = pair_force_mobile(s, ps->kind, i, j) ? p[j] / (delta[j] * delta[j])
+                                                                   : pw[j] / (delta[i] * delta[i]);
             const double *G = gl->g + 3 * e;
             for (int d = 0; d < dim; ++d) a[d] -= (pi + pj) * G[d];
         }
