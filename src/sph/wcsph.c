@@ -1389,17 +1389,6 @@ static ry_status fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
         }
     }
     w->rng_gen = sim->nl_generation;
-    if (getenv("RY_DBG_RNG")) {
-        size_t tot = 0, nf = 0;
-        for (size_t i = 0; i < n; ++i) {
-            if (sim->ps.kind[i]) continue;
-            ++nf;
-            for (int r = 0; r < nrange; ++r)
-                tot += rng[i * 2 * nrange + 2 * r + 1] - rng[i * 2 * nrange + 2 * r];
-        }
-        fprintf(stderr, "cand/fluid %.2f cell %g %g reach %g\n", (double)tot / nf, cl->cell[0],
-                cl->cell[1], reach);
-    }
     return RY_OK;
 }
 
