@@ -35,6 +35,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/cell_key.h"
 #include "mps/sparse.h"
 #include "ryushi/sim.h"
 #include "ryushi/surface_tension.h"
@@ -146,6 +147,87 @@ static inline int pair_force_mobile(const iisph *s, const uint8_t *kind, size_t 
     return MOBILE[kind[j]] && (!s->light_on || !s->lt[i] || s->lt[j]);
 }
 
+/* A pocket of the light phase that the heavy fluid encloses (a bubble) is not held: the heavy
+ * phase does not feel the light one's pressure and fills it (docs/iisph.md, "A light phase").
+ * The set-up refuses one. The light particles are joined into bodies (neighbours within
+ * 1.5 dx); a body is a pocket when none of its particles lacks lattice neighbours within
+ * 1.5 dx (a free surface: fewer than 3/4 of the full lattice's 8 in 2D, 18 in 3D) and none has a
+ * wall neighbour. *size receives the size of the first pocket found (0: none), *where one of
+ * its particles. */
+static ry_status light_pocket(const ry_sim *sim, const iisph *s, size_t *size_out, size_t *where,
+                              ry_error *err) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    const double dx = sim->dx, reach = 1.5 * dx, r2 = reach * reach * (1 + 1e-9);
+    const int full = dim == 3 ? 18 : 8;
+    ry_cell_key *k = malloc((n ? n : 1) * sizeof *k);
+    uint32_t *comp = malloc((n ? n : 1) * sizeof *comp), *stack = malloc((n ? n : 1) * 4);
+    if (!k || !comp || !stack) {
+        free(k);
+        free(comp);
+        free(stack);
+        RY_CHECK(err, 0, RY_ERR_NOMEM, "out of memory (light-phase pockets)");
+    }
+    for (size_t i = 0; i < n; ++i) {
+        k[i].i = (uint32_t)i;
+        for (int d = 0; d < 3; ++d)
+            k[i].c[d] = d < dim ? (int64_t)floor(ps->f[RY_F_X + d][i] / reach) : 0;
+        comp[i] = UINT32_MAX;
+    }
+    qsort(k, n, sizeof *k, ry_cell_key_cmp);
+    size_t found = 0;
+    for (size_t seed = 0; seed < n && !found; ++seed) {
+        if (!MOBILE[ps->kind[seed]] || !s->light_mat[ps->material[seed]] ||
+            comp[seed] != UINT32_MAX)
+            continue;
+        size_t top = 0, size = 0;
+        int open = 0;
+        stack[top++] = (uint32_t)seed;
+        comp[seed] = (uint32_t)seed;
+        while (top) {
+            const size_t i = stack[--top];
+            ++size;
+            int count = 0;
+            int64_t c[3] = {0, 0, 0};
+            for (int d = 0; d < dim; ++d) c[d] = (int64_t)floor(ps->f[RY_F_X + d][i] / reach);
+            for (int a = -1; a <= 1; ++a)
+                for (int b = -1; b <= 1; ++b)
+                    for (int e = dim == 3 ? -1 : 0; e <= (dim == 3 ? 1 : 0); ++e) {
+                        const int64_t q[3] = {c[0] + a, c[1] + b, c[2] + e};
+                        for (size_t m = ry_cell_key_find(k, n, q); m < n && ry_cell_same(k[m].c, q);
+                             ++m) {
+                            const size_t j = k[m].i;
+                            if (j == i) continue;
+                            double d2 = 0;
+                            for (int d = 0; d < dim; ++d) {
+                                const double u = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
+                                d2 += u * u;
+                            }
+                            if (d2 > r2) continue;
+                            ++count;
+                            const int light = MOBILE[ps->kind[j]] && s->light_mat[ps->material[j]];
+                            if (!MOBILE[ps->kind[j]]) open = 1; /* a wall: not enclosed by fluid */
+                            if (light && comp[j] == UINT32_MAX) {
+                                comp[j] = (uint32_t)seed;
+                                stack[top++] = (uint32_t)j;
+                            }
+                        }
+                    }
+            if (4 * count < 3 * full) open = 1;
+        }
+        if (!open) {
+            found = size;
+            *where = seed;
+        }
+    }
+    free(k);
+    free(comp);
+    free(stack);
+    *size_out = found;
+    return RY_OK;
+}
+
 /* scheme.light_phase: with boundary (the default) a material lighter than RY_IISPH_LIGHT of the
  * heaviest is light, and the light and heavy phases are solved as two incompressible fluids,
  * each with the other as its boundary: the heavy phase does not see the light one (its
@@ -182,6 +264,18 @@ static ry_status light_phase_init(ry_sim *sim, iisph *s, ry_case *c, ry_error *e
                       : s->implicit             ? "scheme.viscosity"
                                                 : NULL;
     if (!key && s->rheo.on) key = "scheme.light_phase";
+    if (!key) {
+        size_t at = 0, pocket = 0;
+        RY_TRY(light_pocket(sim, s, &pocket, &at, err));
+        char where[256];
+        RY_CHECK(err, pocket == 0, RY_ERR_INPUT,
+                 "%s: key 'scheme.light_phase': %zu particles of the light material '%s' around "
+                 "(%g, %g, %g) lie wholly inside the heavy fluid, a pocket the light phase does "
+                 "not hold (the heavy phase fills it; docs/iisph.md, \"A light phase\")",
+                 ry_case_where(c, "scheme.light_phase", where, sizeof where), pocket,
+                 sim->mat[ps->material[at]].name, ps->f[RY_F_X][at], ps->f[RY_F_Y][at],
+                 sim->dim == 3 ? ps->f[RY_F_Z][at] : 0.0);
+    }
     char where[256];
     RY_CHECK(err, key == NULL, RY_ERR_INPUT,
              "%s: key '%s': not available with a light phase (material '%s' is lighter than %g "
