@@ -162,10 +162,11 @@ static ry_status light_pocket(const ry_sim *sim, const iisph *s, size_t *size_ou
     const double dx = sim->dx, reach = 1.5 * dx, r2 = reach * reach * (1 + 1e-9);
     const int full = dim == 3 ? 18 : 8;
     ry_cell_key *k = malloc((n ? n : 1) * sizeof *k);
-    uint32_t *comp = malloc((n ? n : 1) * sizeof *comp), *stack = malloc((n ? n : 1) * 4);
-    if (!k || !comp || !stack) {
+    uint8_t *seen = calloc(n ? n : 1, 1);
+    uint32_t *stack = malloc((n ? n : 1) * sizeof *stack);
+    if (!k || !seen || !stack) {
         free(k);
-        free(comp);
+        free(seen);
         free(stack);
         RY_CHECK(err, 0, RY_ERR_NOMEM, "out of memory (light-phase pockets)");
     }
@@ -173,18 +174,15 @@ static ry_status light_pocket(const ry_sim *sim, const iisph *s, size_t *size_ou
         k[i].i = (uint32_t)i;
         for (int d = 0; d < 3; ++d)
             k[i].c[d] = d < dim ? (int64_t)floor(ps->f[RY_F_X + d][i] / reach) : 0;
-        comp[i] = UINT32_MAX;
     }
     qsort(k, n, sizeof *k, ry_cell_key_cmp);
     size_t found = 0;
     for (size_t seed = 0; seed < n && !found; ++seed) {
-        if (!MOBILE[ps->kind[seed]] || !s->light_mat[ps->material[seed]] ||
-            comp[seed] != UINT32_MAX)
-            continue;
+        if (!MOBILE[ps->kind[seed]] || !s->light_mat[ps->material[seed]] || seen[seed]) continue;
         size_t top = 0, size = 0;
         int open = 0;
         stack[top++] = (uint32_t)seed;
-        comp[seed] = (uint32_t)seed;
+        seen[seed] = 1;
         while (top) {
             const size_t i = stack[--top];
             ++size;
@@ -208,8 +206,8 @@ static ry_status light_pocket(const ry_sim *sim, const iisph *s, size_t *size_ou
                             ++count;
                             const int light = MOBILE[ps->kind[j]] && s->light_mat[ps->material[j]];
                             if (!MOBILE[ps->kind[j]]) open = 1; /* a wall: not enclosed by fluid */
-                            if (light && comp[j] == UINT32_MAX) {
-                                comp[j] = (uint32_t)seed;
+                            if (light && !seen[j]) {
+                                seen[j] = 1;
                                 stack[top++] = (uint32_t)j;
                             }
                         }
@@ -222,7 +220,7 @@ static ry_status light_pocket(const ry_sim *sim, const iisph *s, size_t *size_ou
         }
     }
     free(k);
-    free(comp);
+    free(seen);
     free(stack);
     *size_out = found;
     return RY_OK;
@@ -240,18 +238,17 @@ static ry_status light_phase_init(ry_sim *sim, iisph *s, ry_case *c, ry_error *e
     RY_TRY(ry_case_choice(c, "scheme.light_phase", "boundary", modes, &boundary, err));
     s->light_mat = calloc((size_t)sim->nmat, 1);
     RY_CHECK(err, s->light_mat != NULL, RY_ERR_NOMEM, "out of memory");
-    /* the materials of the fluid, and of what inlets and outlets carry */
+    /* over the materials of the fluid, and of what inlets and outlets carry */
     const ry_particles *ps = &sim->ps;
-    for (size_t i = 0; i < ps->n; ++i)
-        if (MOBILE[ps->kind[i]] || ps->kind[i] == RY_KIND_INLET) s->light_mat[ps->material[i]] = 2;
     double rmax = 0;
+    for (size_t i = 0; i < ps->n; ++i)
+        if (MOBILE[ps->kind[i]] || ps->kind[i] == RY_KIND_INLET)
+            rmax = fmax(rmax, sim->mat[ps->material[i]].density);
     for (int m = 0; m < sim->nmat; ++m)
-        if (s->light_mat[m]) rmax = fmax(rmax, sim->mat[m].density);
-    for (int m = 0; m < sim->nmat; ++m) {
-        s->light_mat[m] =
-            boundary && s->light_mat[m] && sim->mat[m].density < RY_IISPH_LIGHT * rmax;
-        s->light_on |= s->light_mat[m];
-    }
+        s->light_mat[m] = boundary && sim->mat[m].density < RY_IISPH_LIGHT * rmax;
+    for (size_t i = 0; i < ps->n; ++i)
+        if (MOBILE[ps->kind[i]] || ps->kind[i] == RY_KIND_INLET)
+            s->light_on |= s->light_mat[ps->material[i]];
     /* The light phase's error does not reach the heavy phase: a looser tolerance (10 times the
      * heavy one by default) took the dam break under air from 15 to 5 iterations per step with
      * the same front and the same air speeds (docs/iisph.md). */
@@ -441,12 +438,12 @@ static ry_status ensure(iisph *s, size_t n, ry_error *err) {
     s->sum = b + 7 * cap;
     s->acc = b + 10 * cap;
     for (int d = 0; d < 3; ++d) s->vg[d] = b + (13 + d) * cap;
-    s->cap = cap;
     uint8_t *lt = realloc(s->lt, cap);
     if (lt) s->lt = lt;
     double *pl = realloc(s->pl, cap * sizeof *pl);
     if (pl) s->pl = pl;
     RY_CHECK(err, lt && pl, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
+    s->cap = cap;
     return RY_OK;
 }
 
@@ -848,20 +845,23 @@ static void wall_extrapolate(const wall_map *m, const double *p, double *out) {
     }
 }
 
-/* sum_j (p_j / delta_j^2) grad_i W_ij over the pairs of row i: over mobile j, and over walls
- * with their extrapolated pressure and the volume of i (a light row: the walls and the heavy
- * particles with the light phase's extrapolation pl). Inlined with a literal dim so that the
- * sums stay in registers. */
+/* p_j / delta_j^2 of the pair (i, j): a mobile j's own, a wall's extrapolated pressure with the
+ * volume of i (a light row: the walls and the heavy particles with the light phase's
+ * extrapolation pl); neighbour_pressure_sum sums it times grad_i W_ij over the pairs of row i,
+ * inlined with a literal dim so that the sums stay in registers. */
+static inline double neighbour_pressure(const iisph *s, const uint8_t *kind, const double *p,
+                                        size_t i, uint32_t j) {
+    const double *delta = s->delta;
+    if (pair_force_mobile(s, kind, i, j)) return p[j] / (delta[j] * delta[j]);
+    const double *pw = s->light_on && s->lt[i] ? s->pl : p;
+    return pw[j] / (delta[i] * delta[i]);
+}
+
 static inline void neighbour_pressure_sum(const iisph *s, const uint8_t *kind, const double *p,
                                           size_t i, double *a, int dim) {
     const grad_list *gl = &s->gl;
-    const double *delta = s->delta, *pw = s->light_on && s->lt[i] ? s->pl : p;
-    const double di2 = delta[i] * delta[i];
     for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-        const uint32_t j = gl->j[e];
-        const double *G = gl->g + 3 * e;
-        const double f =
-            pair_force_mobile(s, kind, i, j) ? p[j] / (delta[j] * delta[j]) : pw[j] / di2;
+        const double f = neighbour_pressure(s, kind, p, i, gl->j[e]), *G = gl->g + 3 * e;
         for (int d = 0; d < dim; ++d) a[d] += f * G[d];
     }
 }
@@ -1207,13 +1207,9 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[ps->kind[i]]) continue;
         const double pi = p[i] / (delta[i] * delta[i]);
-        const double *pw = s->light_on && s->lt[i] ? s->pl : p;
         double a[3] = {0, 0, 0};
         for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-            const uint32_t j = gl->j[e];
-            const double pj = pair_force_mobile(s, ps->kind, i, j) ? p[j] / (delta[j] * delta[j])
-                                                                   : pw[j] / (delta[i] * delta[i]);
-            const double *G = gl->g + 3 * e;
+            const double pj = neighbour_pressure(s, ps->kind, p, i, gl->j[e]), *G = gl->g + 3 * e;
             for (int d = 0; d < dim; ++d) a[d] -= (pi + pj) * G[d];
         }
         double a2 = 0, v2 = 0;
