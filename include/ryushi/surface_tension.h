@@ -131,6 +131,22 @@ double ry_st_potential_pair_sum(int dim, double l0, double re);
 /* C from 2 sigma l0^(d-1) = C sum (eq. 11; in 2D per unit depth). */
 double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
 
+/* Linear stability of the potential model's lattice (docs/mps.md, "The potential model's
+ * lattice"): a plane wave u = U e^(i k.x) of the square (2D) or cubic (3D) lattice of spacing l0,
+ * each site of mass rho l0^d, under the pair forces C f(r) within re, oscillates as
+ * omega^2 = U.D(k).U / (m |U|^2), D(k) = sum_j K_j (1 - cos k.x_j), the pair stiffness
+ * K_j = C (f'(r) e e + f(r)/r (I - e e)), e = x_j / r. ry_st_potential_lattice_omega2 gives
+ * omega^2 [1/s^2] for the wave vector k [1/m] and the polarisation pol (not normalised);
+ * negative: the wave grows as e^(sqrt(-omega^2) t). */
+double ry_st_potential_lattice_omega2(int dim, double l0, double re, double sigma, double rho,
+                                      const double k[3], const double pol[3]);
+/* The fastest growth [1/s] of the transverse waves (pol normal to k: the divergence-free
+ * ones, which the pressure equation leaves alone) over the wave vectors of a grid of
+ * steps pi / (16 l0) up to pi / l0 along each axis; 0 if none grows. k_out (or NULL) receives
+ * the wave vector of the fastest, in units of pi / l0. */
+double ry_st_potential_lattice_growth(int dim, double l0, double re, double sigma, double rho,
+                                      double k_out[3]);
+
 /* The potential model's acceleration of fluid particle i alone, added to a[d][i] (what
  * ry_st_accelerate does for each, for a scheme that fuses it into a pass of its own). */
 void ry_st_potential_particle(const ry_surface_tension *st, const ry_sim *sim, size_t i,

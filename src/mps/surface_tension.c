@@ -46,6 +46,88 @@ double ry_st_potential_coefficient(int dim, double l0, double re, double sigma) 
     return 2.0 * sigma * area / ry_st_potential_pair_sum(dim, l0, re);
 }
 
+/* The pair stiffness summed into D(k) (ry_st_potential_lattice_omega2). */
+static void lattice_dynamical(int dim, double l0, double re, double C, const double k[3],
+                              double D[3][3]) {
+    const int K = lattice_extent(l0, re);
+    memset(D, 0, 9 * sizeof D[0][0]);
+    for (int a = -K; a <= K; ++a)
+        for (int b = -K; b <= K; ++b)
+            for (int c = (dim > 2 ? -K : 0); c <= (dim > 2 ? K : 0); ++c) {
+                const double x[3] = {a * l0, b * l0, c * l0};
+                const double r = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+                if (r <= 0 || r >= re) continue;
+                const double f = (r - l0) * (r - re), fp = 2 * r - l0 - re;
+                const double s = 1.0 - cos(k[0] * x[0] + k[1] * x[1] + k[2] * x[2]);
+                for (int i = 0; i < 3; ++i)
+                    for (int j = 0; j < 3; ++j) {
+                        const double ee = x[i] * x[j] / (r * r);
+                        D[i][j] += C * s * (fp * ee + f / r * ((i == j) - ee));
+                    }
+            }
+}
+
+double ry_st_potential_lattice_omega2(int dim, double l0, double re, double sigma, double rho,
+                                      const double k[3], const double pol[3]) {
+    const double C = ry_st_potential_coefficient(dim, l0, re, sigma);
+    const double m = rho * pow(l0, dim);
+    double D[3][3], num = 0, den = 0;
+    lattice_dynamical(dim, l0, re, C, k, D);
+    for (int i = 0; i < dim; ++i) {
+        den += pol[i] * pol[i];
+        for (int j = 0; j < dim; ++j) num += pol[i] * D[i][j] * pol[j];
+    }
+    return den > 0 ? num / (m * den) : 0.0;
+}
+
+double ry_st_potential_lattice_growth(int dim, double l0, double re, double sigma, double rho,
+                                      double k_out[3]) {
+    const int N = 16;
+    const double C = ry_st_potential_coefficient(dim, l0, re, sigma);
+    const double m = rho * pow(l0, dim), h = RY_PI / (N * l0);
+    double worst = 0;
+    if (k_out) k_out[0] = k_out[1] = k_out[2] = 0;
+    /* the lattice's symmetry: kx >= ky >= kz >= 0 covers every direction */
+    for (int ix = 1; ix <= N; ++ix)
+        for (int iy = 0; iy <= ix; ++iy)
+            for (int iz = 0; iz <= (dim > 2 ? iy : 0); ++iz) {
+                const double k[3] = {ix * h, iy * h, iz * h};
+                const double kn = sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
+                const double e[3] = {k[0] / kn, k[1] / kn, k[2] / kn};
+                double D[3][3], lo;
+                lattice_dynamical(dim, l0, re, C, k, D);
+                if (dim == 2) {
+                    const double t[2] = {-e[1], e[0]};
+                    lo = t[0] * (D[0][0] * t[0] + D[0][1] * t[1]) +
+                         t[1] * (D[1][0] * t[0] + D[1][1] * t[1]);
+                } else { /* the smaller eigenvalue of D in the plane normal to k */
+                    double t1[3] = {e[1], -e[0], 0}, n1 = hypot(e[0], e[1]);
+                    if (n1 < 1e-12) {
+                        t1[0] = 0, t1[1] = e[2], t1[2] = -e[1];
+                        n1 = hypot(e[1], e[2]);
+                    }
+                    for (int d = 0; d < 3; ++d) t1[d] /= n1;
+                    const double t2[3] = {e[1] * t1[2] - e[2] * t1[1], e[2] * t1[0] - e[0] * t1[2],
+                                          e[0] * t1[1] - e[1] * t1[0]};
+                    double a11 = 0, a12 = 0, a22 = 0;
+                    for (int i = 0; i < 3; ++i)
+                        for (int j = 0; j < 3; ++j) {
+                            a11 += t1[i] * D[i][j] * t1[j];
+                            a12 += t1[i] * D[i][j] * t2[j];
+                            a22 += t2[i] * D[i][j] * t2[j];
+                        }
+                    lo = 0.5 * (a11 + a22) - sqrt(0.25 * (a11 - a22) * (a11 - a22) + a12 * a12);
+                }
+                lo /= m;
+                if (lo < worst) {
+                    worst = lo;
+                    if (k_out)
+                        for (int d = 0; d < 3; ++d) k_out[d] = k[d] / (RY_PI / l0);
+                }
+            }
+    return worst < 0 ? sqrt(-worst) : 0.0;
+}
+
 /* CSF: the sum over one column of a flat half-space lattice (depths k = 1, 2, ... spacings
  * below the top layer) of the inward sum |sum_j w(r) x_ij / r| (its normal part): it spreads
  * the jump sigma kappa over the top layer and the layers under it (a discrete delta function;

@@ -11,6 +11,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 #include <cmocka.h>
 
@@ -316,12 +317,97 @@ static void test_pcg_deflated(void **state) {
     ry_csr_free(&a);
 }
 
+/* The lattice's plane waves (ry_st_potential_lattice_omega2) against the forces themselves: a
+ * periodic lattice of N^d sites displaced by +-A pol sin(k.x), the pair forces C f(r) summed
+ * directly over the nearest images; their central difference in A at a crest is -m omega^2 A pol
+ * up to O(A^2) (A = 1e-6 l0: 1e-6 relative). Then the growth of the transverse waves: the seed's
+ * 3.1 l0 unstable in 2D and 3D, 4.1 l0 stable in 3D, and sqrt(sigma / (rho l0^3)) scaling. */
+static double lattice_force(int dim, int N, double l0, double re, double C, const double k[3],
+                            const double pol[3], double A, int site) {
+    /* the displaced position of each site, and the force along pol on the given one */
+    const double L = N * l0;
+    const int n = dim > 2 ? N * N * N : N * N;
+    double xs[1000][3];
+    for (int s = 0; s < n; ++s) {
+        const int idx[3] = {s % N, (s / N) % N, dim > 2 ? s / (N * N) : 0};
+        double ph = 0;
+        for (int d = 0; d < 3; ++d) ph += k[d] * idx[d] * l0;
+        for (int d = 0; d < 3; ++d) xs[s][d] = idx[d] * l0 + A * pol[d] * sin(ph);
+    }
+    double f = 0;
+    for (int j = 0; j < n; ++j) {
+        if (j == site) continue;
+        double dx[3], r2 = 0;
+        for (int d = 0; d < dim; ++d) {
+            dx[d] = xs[j][d] - xs[site][d];
+            dx[d] -= L * round(dx[d] / L);
+            r2 += dx[d] * dx[d];
+        }
+        const double r = sqrt(r2);
+        if (r >= re) continue;
+        const double g = C * ry_st_potential_f(r, l0, re) / r;
+        for (int d = 0; d < dim; ++d) f += g * dx[d] * pol[d];
+    }
+    return f;
+}
+
+static void check_lattice_wave(int dim, int N, double re_l0, const double kn[3],
+                               const double pol[3]) {
+    const double l0 = 1e-4, re = re_l0 * l0, sigma = 0.0728, rho = 1000.0, A = 1e-6 * l0;
+    const double C = ry_st_potential_coefficient(dim, l0, re, sigma), m = rho * pow(l0, dim);
+    double k[3], pn = 0;
+    for (int d = 0; d < 3; ++d) k[d] = 2 * RY_PI * kn[d] / (N * l0);
+    for (int d = 0; d < 3; ++d) pn += pol[d] * pol[d];
+    /* a crest: the site whose phase is nearest pi/2 */
+    int site = 0;
+    double best = -2;
+    const int n = dim > 2 ? N * N * N : N * N;
+    for (int s = 0; s < n; ++s) {
+        const int idx[3] = {s % N, (s / N) % N, dim > 2 ? s / (N * N) : 0};
+        double ph = 0;
+        for (int d = 0; d < 3; ++d) ph += k[d] * idx[d] * l0;
+        if (sin(ph) > best) best = sin(ph), site = s;
+    }
+    const double df = 0.5 * (lattice_force(dim, N, l0, re, C, k, pol, A, site) -
+                             lattice_force(dim, N, l0, re, C, k, pol, -A, site));
+    const double w2 = -df / (m * A * best * pn);
+    char what[96];
+    snprintf(what, sizeof what, "omega^2 (%dD, re = %.1f l0, k = %g %g %g)", dim, re_l0, kn[0],
+             kn[1], kn[2]);
+    assert_rel(ry_st_potential_lattice_omega2(dim, l0, re, sigma, rho, k, pol), w2, 1e-6, what);
+}
+
+static void test_potential_lattice_waves(void **state) {
+    (void)state;
+    const double k1[3] = {2, 1, 0}, p1[3] = {-1, 2, 0}, p1l[3] = {2, 1, 0};
+    check_lattice_wave(2, 10, 3.1, k1, p1);
+    check_lattice_wave(2, 10, 3.1, k1, p1l);
+    const double k2[3] = {3, 1, 1}, p2[3] = {0, 1, -1}, p3[3] = {1, -3, 0};
+    check_lattice_wave(3, 10, 3.1, k2, p2);
+    check_lattice_wave(3, 10, 4.1, k2, p3);
+    const double l0 = 1e-4, sigma = 0.0728, rho = 1000.0;
+    double kw[3];
+    const double g3 = ry_st_potential_lattice_growth(3, l0, 3.1 * l0, sigma, rho, kw);
+    const double g2 = ry_st_potential_lattice_growth(2, l0, 3.1 * l0, sigma, rho, NULL);
+    print_message("transverse growth, seed fluid: 3D 3.1 l0 %.4g 1/s (k = %.3g %.3g %.3g pi/l0), "
+                  "2D 3.1 l0 %.4g 1/s, 3D 4.1 l0 %.4g 1/s\n",
+                  g3, kw[0], kw[1], kw[2], g2,
+                  ry_st_potential_lattice_growth(3, l0, 4.1 * l0, sigma, rho, NULL));
+    assert_true(g3 > 1e3 && g2 > 1e3);
+    assert_true(ry_st_potential_lattice_growth(3, l0, 4.1 * l0, sigma, rho, NULL) == 0.0);
+    assert_rel(ry_st_potential_lattice_growth(3, l0, 3.1 * l0, 4 * sigma, rho, NULL), 2 * g3, 1e-9,
+               "growth ~ sqrt(sigma)");
+    assert_rel(ry_st_potential_lattice_growth(3, 2 * l0, 6.2 * l0, sigma, rho, NULL),
+               g3 / pow(2.0, 1.5), 1e-9, "growth ~ l0^-1.5");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lattice_constants_2d),
         cmocka_unit_test(test_potential_coefficient_2d),
         cmocka_unit_test(test_potential_coefficient_3d),
         cmocka_unit_test(test_potential_force_is_derivative),
+        cmocka_unit_test(test_potential_lattice_waves),
         cmocka_unit_test(test_csf_lattice),
         cmocka_unit_test(test_pcg_poisson_1d),
         cmocka_unit_test(test_pcg_multi_as_single),
