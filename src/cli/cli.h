@@ -27,6 +27,8 @@ int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failu
 int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *failures);
 /* Prints a validation check's line (PASS or FAIL) and counts a failure. */
 void ry_cli_check(const char *what, int ok, int *failures);
+/* Writes plot p as out/name (PNG) and prints where; a failure is printed and counted. */
+void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failures);
 /* A series column times k in a new array (the caller frees it); NULL when the column is
  * missing. */
 double *ry_cli_scaled_column(const ry_table *s, const char *name, double k);

@@ -436,6 +436,18 @@ void ry_cli_check(const char *what, int ok, int *failures) {
     if (!ok) ++*failures;
 }
 
+void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failures) {
+    ry_error err = {0};
+    char png[4096];
+    snprintf(png, sizeof png, "%s/%s", out, name);
+    if (ry_plot_write_png(p, png, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+    } else {
+        printf("  plot: %s\n", png);
+    }
+}
+
 int ry_cli_validate(int argc, char **argv) {
     vctx v = {RY_SOURCE_DIR, "out/validate", 0, 0};
     const char *root_env = getenv("RY_SOURCE_DIR");

@@ -156,12 +156,7 @@ static void dam_break(const char *root, const char *out, int quick, int *failure
                       ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE), &err);
     ry_plot_xrange(p, 0, 0, 3.5, &err);
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
-    char png[4096];
-    snprintf(png, sizeof png, "%s/iisph_dam_break_front.png", out);
-    if (ry_plot_write_png(p, png, &err) != RY_OK)
-        fail(failures, &err);
-    else
-        printf("  plot: %s\n", png);
+    ry_cli_write_plot(p, out, "iisph_dam_break_front.png", failures);
     ry_plot_free(p);
     ry_table_free(&ref);
 }
@@ -330,12 +325,7 @@ static void air_water(const char *root, const char *out, int *failures) {
         ry_plot_legend(p, 1, RY_PLOT_LEGEND_NE, &err);
         irun_free(&w);
     }
-    char png[4096];
-    snprintf(png, sizeof png, "%s/iisph_air_water.png", out);
-    if (ry_plot_write_png(p, png, &err) != RY_OK)
-        fail(failures, &err);
-    else
-        printf("  plot: %s\n", png);
+    ry_cli_write_plot(p, out, "iisph_air_water.png", failures);
     ry_plot_free(p);
 }
 
@@ -528,12 +518,7 @@ static void rayleigh_taylor(const char *root, const char *out, int quick, int *f
     ry_plot_series(p, 0, "linear theory, a0 cosh(n t)", NT, tt, th, st, &err);
     ry_plot_xrange(p, 0, 0, t_end, &err);
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
-    char png[4096];
-    snprintf(png, sizeof png, "%s/iisph_rayleigh_taylor.png", out);
-    if (ry_plot_write_png(p, png, &err) != RY_OK)
-        fail(failures, &err);
-    else
-        printf("  plot: %s\n", png);
+    ry_cli_write_plot(p, out, "iisph_rayleigh_taylor.png", failures);
     ry_plot_free(p);
 }
 
@@ -652,12 +637,7 @@ int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failu
         ry_plot_free(p);
         return fail(failures, &err);
     }
-    char png[4096];
-    snprintf(png, sizeof png, "%s/eye_slices.png", out);
-    if (ry_plot_write_png(p, png, &err) != RY_OK)
-        fail(failures, &err);
-    else
-        printf("  plot: %s\n", png);
+    ry_cli_write_plot(p, out, "eye_slices.png", failures);
     ry_plot_free(p);
     if (eye_segments(root, out, "cases/eye_posterior_drain.yaml", "eye_posterior_drain_dt2e-4",
                      "posterior drain, dt <= 2e-4 s", 2, small, times, nt, NULL, 0, fine,
@@ -832,12 +812,8 @@ int ry_cli_validate_eye_clinical(const char *root, const char *out, int quick, i
         ry_plot_free(p);
         return fail(failures, &err);
     }
-    char png[4096], spath[4096], mdp[4096];
-    snprintf(png, sizeof png, "%s/eye_clinical.png", out);
-    if (ry_plot_write_png(p, png, &err) != RY_OK)
-        fail(failures, &err);
-    else
-        printf("  plot: %s\n", png);
+    ry_cli_write_plot(p, out, "eye_clinical.png", failures);
+    char spath[4096], mdp[4096];
     ry_plot_free(p);
     /* the clinical run's series: the cavity's fluid and when the oil first leaves */
     snprintf(spath, sizeof spath, "%s/eye_clinical/series.csv", out);

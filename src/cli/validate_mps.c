@@ -30,18 +30,6 @@ static ry_status run_mps(const char *root, const char *out, const char *case_rel
     return st;
 }
 
-static void write_plot(ry_plot *p, const char *out, const char *name, int *failures) {
-    ry_error err = {0};
-    char png[4096];
-    snprintf(png, sizeof png, "%s/%s", out, name);
-    if (ry_plot_write_png(p, png, &err) != RY_OK) {
-        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
-        ++*failures;
-    } else {
-        printf("  plot: %s\n", png);
-    }
-}
-
 /* Hydrostatic column: the time-mean pressure along the middle (the case's profile `column`,
  * every 10 ms over the second half of the run) at depths of 5 to 38 spacings against rho g h,
  * and the largest speed. */
@@ -232,7 +220,7 @@ static void validate_drops(const char *root, const char *out, int quick, int *fa
     }
     fclose(md);
     printf("  table: %s\n", mdp);
-    write_plot(p, out, "mps_droplets.png", failures);
+    ry_cli_write_plot(p, out, "mps_droplets.png", failures);
     ry_plot_free(p);
 }
 
@@ -456,7 +444,7 @@ static void validate_dam_break_mps(const char *root, const char *out, int *failu
     }
     ry_plot_xrange(p, 0, 0, 3.5, &err);
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_NW, &err);
-    write_plot(p, out, "mps_dam_break.png", failures);
+    ry_cli_write_plot(p, out, "mps_dam_break.png", failures);
     ry_plot_free(p);
     ry_table_free(&ref);
 }
@@ -546,7 +534,7 @@ static void validate_sessile(const char *root, const char *out, int quick, int *
     }
     if (plot) {
         ry_plot_legend(plot, 0, RY_PLOT_LEGEND_SE, &err);
-        write_plot(plot, out, "mps_sessile.png", failures);
+        ry_cli_write_plot(plot, out, "mps_sessile.png", failures);
         ry_plot_free(plot);
     }
 }
@@ -581,7 +569,7 @@ static void validate_sessile_two(const char *root, const char *out, int quick, i
     }
     if (plot) {
         ry_plot_legend(plot, 0, RY_PLOT_LEGEND_SE, &err);
-        write_plot(plot, out, "mps_sessile_two.png", failures);
+        ry_cli_write_plot(plot, out, "mps_sessile_two.png", failures);
         ry_plot_free(plot);
     }
 }

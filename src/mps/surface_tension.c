@@ -57,7 +57,8 @@ static void lattice_dynamical(int dim, double l0, double re, double C, const dou
                 const double x[3] = {a * l0, b * l0, c * l0};
                 const double r = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
                 if (r <= 0 || r >= re) continue;
-                const double f = (r - l0) * (r - re), fp = 2 * r - l0 - re;
+                /* f and its derivative f' = 2 r - l0 - re */
+                const double f = ry_st_potential_f(r, l0, re), fp = 2 * r - l0 - re;
                 const double s = 1.0 - cos(k[0] * x[0] + k[1] * x[1] + k[2] * x[2]);
                 for (int i = 0; i < 3; ++i)
                     for (int j = 0; j < 3; ++j) {

@@ -328,6 +328,7 @@ static double lattice_force(int dim, int N, double l0, double re, double C, cons
     const double L = N * l0;
     const int n = dim > 2 ? N * N * N : N * N;
     double xs[1000][3];
+    assert_true(n <= 1000);
     for (int s = 0; s < n; ++s) {
         const int idx[3] = {s % N, (s / N) % N, dim > 2 ? s / (N * N) : 0};
         double ph = 0;
