@@ -116,6 +116,16 @@ double ry_particles_kinetic_energy(const ry_particles *ps, int dim, ry_kind kind
 /* The same without the particles whose skip[i] is non-zero (skip may be NULL). */
 double ry_particles_kinetic_energy_of(const ry_particles *ps, int dim, ry_kind kind,
                                       const double *mass_scale, const uint8_t *skip);
+/* Fourth-order shape moment of a drop: the particles of one kind about their centroid, the
+ * amplitude of the cubic (3D) or square (2D) deformation: <x^4 + y^4 + z^4> / <r^4> - 3/5 in 3D,
+ * <x^4 + y^4> / <r^4> - 3/4 in 2D (1D: 0). Zero for any isotropic set (a sphere, a circle); a
+ * uniform cube reads -12/95 = -0.1263, a square -3/28 = -0.1071, the same shapes turned by 45
+ * degrees positive values. Each particle counts once, so it averages over the whole drop. The
+ * drop is the particles within twice the equivalent radius R (N dx^dim the volume) of the
+ * median of each coordinate, so that particles thrown off, whose r^4 would outweigh thousands,
+ * do not count; the moments are taken about the centroid of that drop (and of the particles
+ * within 2 R of it). NAN without particles of the kind. */
+double ry_particles_shape_m4(const ry_particles *ps, int dim, ry_kind kind, double dx);
 /* Coordinates as the neighbour search takes them (x[d] for d < dim, NULL beyond). */
 static inline void ry_particles_coords(const ry_particles *ps, const double *x[3]) {
     x[0] = ps->f[RY_F_X];

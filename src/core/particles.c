@@ -1,6 +1,7 @@
 /* The particle set: structure of arrays over a field table (see include/ryushi/particles.h). */
 #include "ryushi/particles.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -214,6 +215,55 @@ size_t ry_particles_bytes_per_particle(const ry_particles *ps) {
 double ry_particles_kinetic_energy(const ry_particles *ps, int dim, ry_kind kind,
                                    const double *mass_scale) {
     return ry_particles_kinetic_energy_of(ps, dim, kind, mass_scale, NULL);
+}
+
+static int cmp_coord(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double ry_particles_shape_m4(const ry_particles *ps, int dim, ry_kind kind, double dx) {
+    size_t n = 0;
+    for (size_t i = 0; i < ps->n; ++i) n += ps->kind[i] == kind;
+    if (n == 0) return NAN;
+    if (dim < 2) return 0.0;
+    /* the drop's middle, which particles thrown off do not move: the median of each coordinate */
+    double *v = malloc(n * sizeof *v), m[3] = {0, 0, 0}, c[3] = {0, 0, 0};
+    if (!v) return NAN;
+    for (int d = 0; d < dim; ++d) {
+        size_t k = 0;
+        for (size_t i = 0; i < ps->n; ++i)
+            if (ps->kind[i] == kind) v[k++] = ps->f[RY_F_X + d][i];
+        qsort(v, n, sizeof *v, cmp_coord);
+        m[d] = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    }
+    free(v);
+    /* the drop: within twice the equivalent radius (pi R^2 = N dx^2, 4/3 pi R^3 = N dx^3) */
+    const double pi = 3.14159265358979323846;
+    const double R = dim > 2 ? dx * cbrt(3.0 * (double)n / (4.0 * pi)) : dx * sqrt((double)n / pi);
+    const double rmax2 = 4.0 * R * R;
+    for (int pass = 0; pass < 2; ++pass) { /* its centroid, then the moments about it */
+        double s4 = 0, r4 = 0, sum[3] = {0, 0, 0};
+        size_t k = 0;
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (ps->kind[i] != kind) continue;
+            double q4 = 0, r2 = 0, x[3] = {0, 0, 0};
+            for (int d = 0; d < dim; ++d) {
+                x[d] = ps->f[RY_F_X + d][i] - (pass ? c[d] : m[d]);
+                q4 += x[d] * x[d] * x[d] * x[d];
+                r2 += x[d] * x[d];
+            }
+            if (r2 > rmax2) continue;
+            for (int d = 0; d < dim; ++d) sum[d] += ps->f[RY_F_X + d][i];
+            s4 += q4;
+            r4 += r2 * r2;
+            ++k;
+        }
+        if (k == 0) return NAN;
+        if (pass) return r4 > 0 ? s4 / r4 - (dim > 2 ? 0.6 : 0.75) : 0.0;
+        for (int d = 0; d < dim; ++d) c[d] = sum[d] / (double)k;
+    }
+    return NAN;
 }
 
 double ry_particles_kinetic_energy_of(const ry_particles *ps, int dim, ry_kind kind,

@@ -25,6 +25,12 @@ static ry_status probe_kinetic(const ry_sim *sim, double *v, ry_error *err) {
     return RY_OK;
 }
 
+static ry_status probe_shape_m4(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = ry_particles_shape_m4(&sim->ps, sim->dim, RY_KIND_FLUID, sim->dx);
+    return RY_OK;
+}
+
 static ry_status probe_max_speed(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
     const ry_particles *ps = &sim->ps;
@@ -526,6 +532,12 @@ static const ry_probe p_outflow = {
 static const ry_probe p_nfluid = {"fluid_particles", "number of fluid particles",
                                   probe_fluid_particles};
 static const ry_probe p_kin = {"kinetic_energy", "fluid kinetic energy [J]", probe_kinetic};
+static const ry_probe p_shape_m4 = {
+    "shape_m4",
+    "fourth-order shape moment of the fluid about its centroid, <x^4+y^4+z^4>/<r^4> - 3/5 (2D: "
+    "<x^4+y^4>/<r^4> - 3/4), of the particles within twice the equivalent radius: 0 for a "
+    "sphere or circle, -0.126 for a cube, -0.107 for a square",
+    probe_shape_m4};
 static const ry_probe p_vmax = {"max_speed", "largest fluid speed [m/s]", probe_max_speed};
 static const ry_probe p_tau_max = {
     "max_polymer_stress", "largest size of the polymer stress sqrt(tau : tau) over the fluid [Pa]",
@@ -592,6 +604,7 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_iters,
                                              &p_iters_mean,
                                              &p_kin,
+                                             &p_shape_m4,
                                              &p_vmax,
                                              &p_tau_max,
                                              &p_out,
