@@ -123,6 +123,11 @@ typedef struct ry_oscillation_fit {
 } ry_oscillation_fit;
 ry_oscillation_fit ry_fit_oscillation(const ry_table *series, const char *name, double t0,
                                       double t1, double T_lo, double T_hi, double k_max);
+/* An oscillating drop's period from the whole drop's shape moment (the column shape_m4,
+ * ry_particles_shape_m4): the damped cosine above fitted from T/4 on, past the first rounding
+ * of the cube or square, to the end, over periods 0.5-2 T and decay rates up to 2000 1/s;
+ * T is Lamb's period. */
+ry_oscillation_fit ry_drop_shape_fit(const ry_table *series, double T);
 
 /* Linear Rayleigh-Taylor growth rate [1/s] of a heavy layer (rho1, depth h1) over a light one
  * (rho2, depth h2, on a rigid floor), wavenumber k, gravity g, interfacial tension sigma, from

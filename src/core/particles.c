@@ -247,11 +247,11 @@ double ry_particles_shape_m4(const ry_particles *ps, int dim, ry_kind kind, doub
         size_t k = 0;
         for (size_t i = 0; i < ps->n; ++i) {
             if (ps->kind[i] != kind) continue;
-            double q4 = 0, r2 = 0, x[3] = {0, 0, 0};
+            double q4 = 0, r2 = 0;
             for (int d = 0; d < dim; ++d) {
-                x[d] = ps->f[RY_F_X + d][i] - (pass ? c[d] : m[d]);
-                q4 += x[d] * x[d] * x[d] * x[d];
-                r2 += x[d] * x[d];
+                const double x = ps->f[RY_F_X + d][i] - (pass ? c[d] : m[d]), x2 = x * x;
+                q4 += x2 * x2;
+                r2 += x2;
             }
             if (r2 > rmax2) continue;
             for (int d = 0; d < dim; ++d) sum[d] += ps->f[RY_F_X + d][i];

@@ -492,6 +492,10 @@ ry_oscillation_fit ry_fit_oscillation(const ry_table *series, const char *name, 
     return o;
 }
 
+ry_oscillation_fit ry_drop_shape_fit(const ry_table *series, double T) {
+    return ry_fit_oscillation(series, "shape_m4", 0.25 * T, INFINITY, 0.5 * T, 2.0 * T, 2000.0);
+}
+
 double ry_rt_growth_rate(double rho1, double rho2, double h1, double h2, double g, double k,
                          double nu, double sigma, int free_top) {
     const double drive = (rho1 - rho2) * g * k - sigma * k * k * k, t1 = tanh(k * h1);

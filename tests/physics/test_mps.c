@@ -269,8 +269,7 @@ static void square_drop(const char *model, double tol_half, double tol_period, d
     const double T = 2 * 3.14159265358979323846 / sqrt(60 * 0.0728 / (1000 * R * R * R));
     ry_drop_periods d = ry_drop_periods_measure(&s, "width_x");
     const ry_oscillation_fit f = ry_fit_oscillation(&s, "width_x", 0, 1, 0.3 * T, 2 * T, 1e3);
-    const ry_oscillation_fit g =
-        ry_fit_oscillation(&s, "shape_m4", 0.25 * T, INFINITY, 0.5 * T, 2.0 * T, 2000.0);
+    const ry_oscillation_fit g = ry_drop_shape_fit(&s, T);
     printf("square drop 30x30, %s: half period %.3f ms (Lamb %.3f), period %.3f ms (Lamb %.3f); "
            "widths %.3f, %.3f, %.3f mm; damped cosine fitted: period %.3f ms (%+.1f %%)\n",
            model, 1e3 * d.half, 0.5e3 * T, 1e3 * d.period, 1e3 * T, 1e3 * d.width0,
@@ -318,8 +317,7 @@ static void test_cube_drop_potential_radius(void **state) {
            "period %.3f ms (Lamb %.3f, %+.1f %%); widths %.3f, %.3f, %.3f mm\n",
            1e3 * d.half, 0.5e3 * T, 100 * (d.half / (0.5 * T) - 1), 1e3 * d.period, 1e3 * T,
            100 * (d.period / T - 1), 1e3 * d.width0, 1e3 * d.width_max, 1e3 * d.width_min);
-    const ry_oscillation_fit f =
-        ry_fit_oscillation(&s, "shape_m4", 0.25 * T, INFINITY, 0.5 * T, 2.0 * T, 2000.0);
+    const ry_oscillation_fit f = ry_drop_shape_fit(&s, T);
     printf("  shape moment from %.4f; damped cosine fitted from T/4: period %.3f ms (%+.1f %%), "
            "decay %.0f 1/s\n",
            ry_table_at(&s, 0, ry_table_col(&s, "shape_m4")), 1e3 * f.period,

@@ -1,6 +1,7 @@
 /* ry_fit_oscillation: a damped cosine fitted to a series built by hand. Without noise the
  * period and decay rate come back to the grid's resolution (1e-4 relative asked); with a
- * deterministic noise of 3 % of the amplitude, within 1 % (period) and 10 % (decay rate). */
+ * deterministic noise of 3 % of the amplitude, within 1 % (period) and 10 % (decay rate).
+ * ry_drop_shape_fit: the same on a shape moment whose first quarter period is no cosine. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -59,10 +60,37 @@ static void test_fit_noisy(void **state) {
     free(t.data);
 }
 
+/* shape_m4 every 0.1 ms to 8 ms: from the cube's -0.127 a ramp up to T/4 (Lamb's T = 3.7927
+ * ms), then 0.04 e^(-100 t) cos(2 pi t / (1.05 T) + 0.3): the fit starts at T/4 and finds
+ * the drop's 1.05 T. */
+static void test_drop_shape_fit(void **state) {
+    (void)state;
+    static char cname_t[] = "t", cname_m[] = "shape_m4";
+    static char *names[2] = {cname_t, cname_m};
+    const double T = 3.7927e-3, Tm = 1.05 * T;
+    const size_t n = 81;
+    ry_table t = {.ncols = 2, .nrows = n, .names = names};
+    t.data = malloc(2 * n * sizeof *t.data);
+    assert_non_null(t.data);
+    for (size_t r = 0; r < n; ++r) {
+        const double s = 1e-4 * (double)r;
+        t.data[2 * r] = s;
+        t.data[2 * r + 1] =
+            s < 0.25 * T ? -0.127 + 0.5 * s / T : 0.04 * exp(-100 * s) * cos(2 * PI * s / Tm + 0.3);
+    }
+    const ry_oscillation_fit f = ry_drop_shape_fit(&t, T);
+    assert_int_equal(f.rows, 71);
+    assert_true(fabs(f.period / Tm - 1) < 1e-3);
+    assert_true(fabs(f.decay / 100 - 1) < 0.02);
+    assert_true(fabs(f.mean) < 1e-4);
+    free(t.data);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fit_exact),
         cmocka_unit_test(test_fit_noisy),
+        cmocka_unit_test(test_drop_shape_fit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
