@@ -3,7 +3,7 @@
  * Data flows one way: case file -> ry_sim_setup (validated parameters, bodies filled with
  * particles) -> ry_sim_run [neighbour search -> scheme step -> measurements -> output]. A
  * scheme (WCSPH, IISPH, MPS, solid SPH) is a small table of functions registered by name in
- * src/core/schemes.c and chosen by the case's `scheme.name`. */
+ * src/schemes/registry.c and chosen by the case's `scheme.name`. */
 #ifndef RYUSHI_SIM_H
 #define RYUSHI_SIM_H
 

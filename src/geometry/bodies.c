@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/cell_key.h"
+#include "util/cell_key.h"
 #include "ryushi/geometry.h"
 #include "ryushi/stl.h"
 

@@ -10,7 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "core/cell_key.h"
+#include "util/cell_key.h"
 #include "ryushi/atomic_file.h"
 
 enum { STL_HEADER = 80, STL_RECORD = 50, STL_TOKEN_SHOW = 40 };

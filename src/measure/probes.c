@@ -7,7 +7,7 @@
 #include "ryushi/rheology.h"
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
-#include "sph/iisph.h"
+#include "schemes/iisph/iisph.h"
 
 static ry_status probe_mass(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;

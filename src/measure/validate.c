@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "ryushi/atomic_file.h"
-#include "mps/small.h"
+#include "linalg/small.h"
 #include "ryushi/validate.h"
 
 ry_status ry_setup_case_file(const char *path, int nset, const char *const *sets,

@@ -15,7 +15,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "mps/sparse.h"
+#include "linalg/sparse.h"
 #include "ryushi/mps.h"
 #include "ryushi/surface_tension.h"
 

@@ -31,7 +31,7 @@
 #include <string.h>
 
 #include "ryushi/corrected.h"
-#include "solid/solid_internal.h"
+#include "schemes/solid/solid_internal.h"
 
 static const double RY_SOLID_TL_DYNAMIC_DT = 0.25;
 static const char *const load_names[] = {"none", "end", "uniform", "linear", "cosine", NULL};

@@ -1,11 +1,11 @@
 /* Non-Newtonian materials in the SPH schemes (sph_rheology.h, docs/rheology.md). */
-#include "sph/sph_rheology.h"
+#include "physics/polymer_stress.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "mps/small.h"
+#include "linalg/small.h"
 
 ry_status ry_sph_rheo_init(ry_sph_rheo *r, ry_sim *sim, ry_error *err) {
     memset(r, 0, sizeof *r);

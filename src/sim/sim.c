@@ -7,7 +7,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "core/writer.h"
+#include "sim/writer.h"
 #include "ryushi/geometry.h"
 #include "ryushi/sim.h"
 #include "core/guard_check.h"

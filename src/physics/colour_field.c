@@ -1,5 +1,5 @@
 /* Colour-field interface of two fluids (multiphase.h). */
-#include "sph/multiphase.h"
+#include "physics/colour_field.h"
 
 #include <math.h>
 #include <stdlib.h>

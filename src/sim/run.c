@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/writer.h"
+#include "sim/writer.h"
 #include "ryushi/sim.h"
 #include "ryushi/validate.h"
 #include "core/guard_check.h"

@@ -22,7 +22,7 @@
 #define RYUSHI_SPH_MULTIPHASE_H
 
 #include "ryushi/sim.h"
-#include "sph/sph_pairs.h"
+#include "pairs/pair_cache.h"
 
 typedef struct ry_colour {
     int material;    /* the colour material (c = 1) */

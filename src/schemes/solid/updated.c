@@ -40,7 +40,7 @@
 #include <string.h>
 
 #include "ryushi/corrected.h"
-#include "solid/solid_internal.h"
+#include "schemes/solid/solid_internal.h"
 
 /* Components of the symmetric deviatoric stress: xx, yy, zz, xy, xz, yz. */
 static const int comp_a[6] = {0, 1, 2, 0, 0, 1}, comp_b[6] = {0, 1, 2, 1, 2, 2};

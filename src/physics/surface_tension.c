@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mps/small.h"
+#include "linalg/small.h"
 #include "ryushi/surface_tension.h"
 
 const char *const ry_st_model_names[] = {"none", "csf", "potential", NULL};

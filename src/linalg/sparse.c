@@ -8,7 +8,7 @@
 
 #include <omp.h>
 
-#include "mps/sparse.h"
+#include "linalg/sparse.h"
 #include "ryushi/sim.h"
 
 static int grow(void **p, size_t *cap, size_t want, size_t size) {

@@ -1,5 +1,5 @@
 /* Pair cache of the implicit SPH schemes (sph_pairs.h). */
-#include "sph/sph_pairs.h"
+#include "pairs/pair_cache.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -4,8 +4,8 @@
 #include "ryushi/mps.h"
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
-#include "sph/iisph.h"
-#include "sph/wcsph.h"
+#include "schemes/iisph/iisph.h"
+#include "schemes/wcsph/wcsph.h"
 
 /* "static": particles stay where they are (for setting up and inspecting geometry). */
 static ry_status static_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {

@@ -34,9 +34,9 @@
 #include "core/guard_check.h"
 #include "ryushi/sim.h"
 #include "ryushi/surface_tension.h"
-#include "sph/sph_pairs.h"
-#include "sph/sph_rheology.h"
-#include "sph/wcsph.h"
+#include "pairs/pair_cache.h"
+#include "physics/polymer_stress.h"
+#include "schemes/wcsph/wcsph.h"
 
 enum { DENS_CONTINUITY, DENS_SUMMATION };
 enum { EOS_TAIT, EOS_LINEAR, EOS_IDEAL_GAS };

@@ -19,20 +19,20 @@
  *              Poisson equation (wall particles); the others only add to the number density
  *              (dummy particles).
  *  solver      conjugate gradients with the Jacobi preconditioner on a CSR matrix assembled
- *              each step (src/mps/sparse.c); the matrix of both systems is symmetric positive
+ *              each step (src/linalg/sparse.c); the matrix of both systems is symmetric positive
  *              definite because lambda and n0 are constants of the lattice. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "mps/small.h"
-#include "mps/sparse.h"
+#include "linalg/small.h"
+#include "linalg/sparse.h"
 #include "neighbor/r2_simd.h"
 #include "ryushi/mps.h"
 #include "ryushi/surface_tension.h"
-#include "sph/multiphase.h"
-#include "sph/sph_pairs.h"
+#include "physics/colour_field.h"
+#include "pairs/pair_cache.h"
 
 enum { SRC_MIXED, SRC_NUMBER_DENSITY };
 enum { VISC_EXPLICIT, VISC_IMPLICIT, VISC_NONE, VISC_MIXED };

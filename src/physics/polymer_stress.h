@@ -7,7 +7,7 @@
 #define RYUSHI_SPH_RHEOLOGY_H
 
 #include "ryushi/sim.h"
-#include "sph/sph_pairs.h"
+#include "pairs/pair_cache.h"
 
 typedef struct ry_sph_rheo {
     int on;       /* some material is not Newtonian */

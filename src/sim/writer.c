@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/writer.h"
+#include "sim/writer.h"
 #include "ryushi/atomic_file.h"
 #include "ryushi/output.h"
 

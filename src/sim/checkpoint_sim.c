@@ -8,7 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "core/writer.h"
+#include "sim/writer.h"
 #include "ryushi/checkpoint.h"
 #include "ryushi/output.h"
 #include "ryushi/sim.h"

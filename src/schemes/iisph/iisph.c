@@ -35,14 +35,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/cell_key.h"
-#include "mps/sparse.h"
+#include "util/cell_key.h"
+#include "linalg/sparse.h"
 #include "ryushi/sim.h"
 #include "ryushi/surface_tension.h"
-#include "sph/iisph.h"
-#include "sph/multiphase.h"
-#include "sph/sph_pairs.h"
-#include "sph/sph_rheology.h"
+#include "schemes/iisph/iisph.h"
+#include "physics/colour_field.h"
+#include "pairs/pair_cache.h"
+#include "physics/polymer_stress.h"
 
 /* Grows the array ptr to count elements; on failure leaves it as it is and clears ok. */
 #define RY_IISPH_GROW(ptr, count, ok)                                                              \
