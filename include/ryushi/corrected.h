@@ -19,7 +19,8 @@
  *             L_i = (sum_j V_j grad W_ij (x) (x_j - x_i))^-1       (linear fields exact)
  *
  * L_i grad W_ij is the corrected kernel gradient that the total-Lagrangian solid scheme uses
- * (src/schemes/solid/solid.c). Matrices are 3 x 3, row-major; only the leading dim x dim block is used. */
+ * (src/schemes/solid/solid.c). Matrices are 3 x 3, row-major; only the leading dim x dim block is
+ * used. */
 #ifndef RYUSHI_CORRECTED_H
 #define RYUSHI_CORRECTED_H
 
