@@ -14,6 +14,7 @@
 #include "ryushi/checkpoint.h"
 #include "ryushi/particles.h"
 #include "ryushi/sim.h"
+#include "ryushi/run.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     ry_particles_set_limit(RY_FUZZ_MAX_PARTICLES);

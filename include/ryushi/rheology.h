@@ -14,28 +14,10 @@
 #define RYUSHI_RHEOLOGY_H
 
 #include "ryushi/case.h"
+#include "ryushi/material.h"
 #include "ryushi/status.h"
 
-typedef enum {
-    RY_RHEO_NEWTONIAN = 0,
-    RY_RHEO_POWER_LAW,
-    RY_RHEO_CARREAU,
-    RY_RHEO_OLDROYD_B,
-    RY_RHEO_GIESEKUS
-} ry_rheo_model;
-
 extern const char *const ry_rheology_names[]; /* NULL-terminated, in ry_rheo_model order */
-
-typedef struct ry_rheology {
-    int model;
-    double consistency, index; /* power law k [m^2 s^(n-2)], n; Carreau n */
-    double nu_min, nu_max;     /* power law bounds [m^2/s] */
-    double nu_zero, nu_inf;    /* Carreau [m^2/s] */
-    double time;               /* Carreau time constant [s] */
-    double nu_polymer;         /* Oldroyd-B, Giesekus [m^2/s] */
-    double relaxation;         /* Oldroyd-B, Giesekus lambda [s] */
-    double mobility;           /* Giesekus alpha */
-} ry_rheology;
 
 /* Reads `<prefix>.rheology` (prefix e.g. "materials[0]"); absent: Newtonian. */
 ry_status ry_rheology_read(ry_case *c, const char *prefix, ry_rheology *r, ry_error *err);

@@ -1,20 +1,20 @@
-/* ryushi — the simulation: particles, domain, kernel, materials, scheme and time loop.
+/* ryushi — the state of a simulation: particles, domain, kernel, materials, neighbour search,
+ * the scheme's interface, and the queries every layer above the core may make of them.
  *
- * Data flows one way: case file -> ry_sim_setup (validated parameters, bodies filled with
- * particles) -> ry_sim_run [neighbour search -> scheme step -> measurements -> output]. A
- * scheme (WCSPH, IISPH, MPS, solid SPH) is a small table of functions registered by name in
- * src/schemes/registry.c and chosen by the case's `scheme.name`. */
+ * Data flows one way: case file -> ry_sim_setup (ryushi/run.h: validated parameters, bodies
+ * filled with particles) -> ry_sim_run [neighbour search -> scheme step -> measurements ->
+ * output]. A scheme (WCSPH, IISPH, MPS, solid SPH) is a table of functions (ry_scheme_type)
+ * registered by name in src/schemes/registry.c and chosen by the case's `scheme.name`. */
 #ifndef RYUSHI_SIM_H
 #define RYUSHI_SIM_H
 
-#include <signal.h>
 #include <stdio.h>
 
 #include "ryushi/case.h"
 #include "ryushi/kernel.h"
 #include "ryushi/neighbor.h"
 #include "ryushi/particles.h"
-#include "ryushi/rheology.h"
+#include "ryushi/material.h"
 #include "ryushi/status.h"
 
 typedef struct ry_sim ry_sim;
@@ -58,10 +58,6 @@ typedef struct ry_scheme_type {
  * scheme's own buffers. */
 double ry_sim_bytes_per_particle(const ry_sim *sim);
 
-/* The registered schemes, NULL-terminated. */
-const ry_scheme_type *const *ry_schemes(void);
-const ry_scheme_type *ry_scheme_find(const char *name);
-
 /* A distributed run (the ryushi-mpi program, src/parallel/): each process (rank) holds the
  * particles of its subdomain and copies of its neighbours' particles near its boundary (halo
  * particles, flagged in sim->halo). The core calls these hooks where a serial run would act
@@ -103,7 +99,6 @@ typedef struct ry_probe {
     const char *summary;
     ry_status (*eval)(const ry_sim *sim, double *value, ry_error *err);
 } ry_probe;
-const ry_probe *const *ry_probes(void);
 
 /* A line profile (case file `profiles`): values sampled at evenly spaced points from `from` to
  * `to` at every output time, the state at that time or, with `average_from`, the mean over all
@@ -299,15 +294,6 @@ static inline double ry_sim_separation(const ry_sim *sim, size_t i, size_t j, do
     return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
 }
 
-/* Writes the state at an output time: ry_sim_write_output, or in a distributed run the
- * whole set through the parallel layer. */
-ry_status ry_sim_output(ry_sim *sim, ry_error *err);
-
-/* Builds the simulation from a case; checks every key (unknown keys are errors). out_dir may
- * be NULL to take the case's output.folder. */
-ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *err);
-void ry_sim_free(ry_sim *sim);
-
 /* Brings the neighbour list up to date for a support radius: rebuilt (and the particles
  * reordered along cells every reorder_every builds, or every build with sort_always) when the
  * radius or the particle count changed or a particle moved more than half the skin since the last
@@ -331,35 +317,6 @@ static inline int ry_sim_searched(const ry_sim *sim) {
     return sim->nl_restore || (sim->cells_only ? sim->cells.start != NULL : sim->nl.offset != NULL);
 }
 
-/* Progress reports and the stop flag for ry_sim_run. */
-typedef struct ry_run_hooks {
-    void (*progress)(void *ctx, const ry_sim *sim, double particle_steps_per_s, double eta_s);
-    void *ctx;
-    double progress_interval_s;  /* wall seconds between progress calls */
-    volatile sig_atomic_t *stop; /* set (by a signal handler) to end the run cleanly */
-} ry_run_hooks;
-
-/* Summary of a run. */
-typedef struct ry_run_stats {
-    long steps;
-    size_t particles;
-    double wall_s;
-    double particle_steps_per_s;
-    int outputs;
-} ry_run_stats;
-
-/* Runs to t_end (or max_steps), writing output at the output interval and at the end. On
- * instability the last good state is kept on disk and RY_ERR_UNSTABLE returned with a
- * diagnosis; on a stop request the current state is written and RY_ERR_INTERRUPTED returned. */
-ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err);
-
-/* Creates the output folder, writes the resolved case into it (case_resolved.yaml) and
- * starts series.csv. Call before ry_sim_run. */
-ry_status ry_sim_open_output(ry_sim *sim, ry_case *c, ry_error *err);
-
-/* Writes the current state (VTK file, .pvd entry, series.csv row). */
-ry_status ry_sim_write_output(ry_sim *sim, ry_error *err);
-
 /* Checks every particle for non-finite or runaway values and the domain; RY_ERR_UNSTABLE with
  * the first bad particles named. */
 ry_status ry_sim_check(const ry_sim *sim, ry_error *err);
@@ -369,62 +326,5 @@ size_t ry_sim_count_outside(const ry_sim *sim);
 /* Particles other than i within `radius` of it, found through the cells of the last neighbour
  * search (radius at most the cell edge minus the distance moved since). */
 size_t ry_sim_count_within(const ry_sim *sim, size_t i, double radius);
-
-/* Profiles: read from the case (ry_sim_setup calls it), sampled and written as
- * profile_NAME.csv at each output time (ry_sim_write_output calls it), freed. */
-ry_status ry_profiles_setup(ry_sim *sim, ry_case *c, ry_error *err);
-ry_status ry_profiles_output(ry_sim *sim, ry_error *err);
-void ry_profiles_free(ry_sim *sim);
-const ry_profile *ry_profile_find(const ry_sim *sim, const char *name);
-/* Point k of a profile (x has 3 entries, unused ones 0). */
-void ry_profile_point(const ry_sim *sim, const ry_profile *pf, int k, double *x);
-/* Mean so far of value `value` (0..dim-1 velocity, dim pressure, dim + 1 density) at point k;
- * NAN before the first sample. */
-double ry_profile_mean(const ry_sim *sim, const ry_profile *pf, int k, int value);
-/* Shepard interpolation at x of velocity, pressure and density (dim + 2 values) over fluid and
- * wall particles; 0 (and NANs) when no particle is within the kernel support. */
-int ry_sample_point(const ry_sim *sim, const double *x, double *out);
-
-/* Open boundaries: read from the case with their inlet zones filled (ry_sim_setup calls it),
- * and the conversions after each step (ry_sim_run calls it): inlet particles past their zone
- * become fluid and are replaced upstream, fluid entering an outlet zone becomes an outlet
- * particle, outlet particles past their zone are removed. Schemes move inlet and outlet
- * particles with their own velocity in their drift. */
-ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err);
-ry_status ry_open_update(ry_sim *sim, ry_error *err);
-/* Volume [m^3] that entered through inlets / left through outlets so far. */
-double ry_open_volume(const ry_sim *sim, int type);
-
-/* Checkpoints (include/ryushi/checkpoint.h for the format). Writes the whole state to path. */
-ry_status ry_sim_checkpoint_write(const ry_sim *sim, const char *path, ry_error *err);
-/* Replaces the state of a simulation set up from the same case (scheme, dimension, materials
- * and fields must match) by a checkpoint's. */
-ry_status ry_sim_checkpoint_read(ry_sim *sim, const char *path, ry_error *err);
-/* Writes a checkpoint into OUT/checkpoints/ (named by step) and removes all but the newest
- * `checkpoint.keep`; path (if not NULL) receives the file name. */
-ry_status ry_sim_checkpoint_now(ry_sim *sim, char *path, size_t path_size, ry_error *err);
-/* Restarts from the newest readable checkpoint in dir (a run's output folder or its
- * checkpoints/ folder); damaged newer ones are skipped and named in *skipped (may be NULL). */
-ry_status ry_sim_restart(ry_sim *sim, const char *dir, char *used, size_t used_size, char *skipped,
-                         size_t skipped_size, ry_error *err);
-/* The last good state: copied every guard.snapshot_every steps; on instability written as
- * CASE_last_good.vtp and a checkpoint. */
-ry_status ry_sim_snapshot_take(ry_sim *sim, ry_error *err);
-ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_error *err);
-void ry_sim_snapshot_free(ry_sim *sim);
-
-/* Monotonic wall clock in seconds. */
-double ry_wall_time(void);
-
-/* Artificial repulsion between fluid particles closer than rc (Lee et al. 2011 collision model
- * in the gather form; MPS, seed 003, and IISPH with free-surface tension): for each approaching
- * pair, particle i takes the share of a partially inelastic collision,
- * dv_i = (1 + e)/2 (v_ij . n) n, n = x_ij / r, v_ij = v_j - v_i (walls count with their own
- * velocity, twice, and do not move). Positions follow by dt dv_i. Reads the rows of the
- * neighbour list of sim (which must reach rc), or with nj the neighbours nj[q] for q from
- * sim->nl.offset[i] to row_end[i] (a shorter list in the same rows); dv is work space of dim n
- * doubles. rc <= 0: nothing. */
-void ry_collisions(ry_sim *sim, double rc, double restitution, double dt, const uint32_t *nj,
-                   const size_t *row_end, double *dv);
 
 #endif

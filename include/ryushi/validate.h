@@ -6,6 +6,7 @@
 
 #include "ryushi/csv.h"
 #include "ryushi/sim.h"
+#include "ryushi/run.h"
 
 /* Loads a case file, applies overrides ("key=value") and sets it up with its output open in
  * out_dir, ready to run. On failure sim is freed. */

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "ryushi/sim.h"
+#include "ryushi/open_boundary.h"
 
 static const char *const type_names[] = {"inlet", "outlet", NULL};
 

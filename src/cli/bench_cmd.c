@@ -9,6 +9,7 @@
 #include "cli/cli.h"
 #include "ryushi/bench.h"
 #include "ryushi/sim.h"
+#include "ryushi/run.h"
 
 /* The seed dam break (cases/dam_break_seed.yaml) in 2D or extruded in 3D, without output. */
 static int dam_break_text(char *buf, size_t size, int dim, double dx, long steps) {

@@ -10,6 +10,9 @@
 #include "cli/cli.h"
 #include "ryushi/case.h"
 #include "ryushi/checkpoint.h"
+#include "ryushi/probes.h"
+#include "ryushi/run.h"
+#include "ryushi/schemes.h"
 #include "ryushi/sim.h"
 #ifdef RY_MPI_CLI
 #include "parallel/mpi_dd.h"

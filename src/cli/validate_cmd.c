@@ -11,6 +11,7 @@
 #include "ryushi/atomic_file.h"
 #include "ryushi/plot.h"
 #include "ryushi/validate.h"
+#include "ryushi/run.h"
 
 typedef struct vctx {
     const char *root; /* project folder: cases/ and data/reference/ */

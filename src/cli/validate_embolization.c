@@ -14,6 +14,7 @@
 #include "ryushi/atomic_file.h"
 #include "ryushi/plot.h"
 #include "ryushi/validate.h"
+#include "ryushi/run.h"
 
 /* The case's values (cases/mps_embolization_2d_coarse.yaml). */
 #define U_IN 8.5e-3         /* inflow [m/s] */

@@ -31,6 +31,7 @@
 #include "ryushi/plot.h"
 #include "ryushi/surface_tension.h"
 #include "ryushi/validate.h"
+#include "ryushi/run.h"
 
 /* The case's values (cases/mps_embolization_3d_coarse.yaml) and the seed's; the inflow
  * velocity is read from the case's inlet. */

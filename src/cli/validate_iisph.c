@@ -15,6 +15,8 @@
 #include "ryushi/csv.h"
 #include "ryushi/plot.h"
 #include "ryushi/validate.h"
+#include "ryushi/probes.h"
+#include "ryushi/run.h"
 
 typedef struct irun {
     ry_table s;

@@ -13,6 +13,7 @@
 #include "ryushi/surface_tension.h"
 #include "ryushi/plot.h"
 #include "ryushi/validate.h"
+#include "ryushi/run.h"
 
 #define PI 3.14159265358979323846
 

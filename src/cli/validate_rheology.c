@@ -12,6 +12,7 @@
 #include "ryushi/atomic_file.h"
 #include "ryushi/plot.h"
 #include "ryushi/validate.h"
+#include "ryushi/run.h"
 
 #define CH 1.0e-3 /* channel width of the cases [m] */
 #define MAXROWS 128

@@ -11,6 +11,7 @@
 #include "ryushi/plot.h"
 #include "ryushi/solid.h"
 #include "ryushi/validate.h"
+#include "ryushi/run.h"
 
 enum { NK = 3, NL = 3, NR = 3 };
 static const char *const kname[NK] = {"lucy", "gaussian", "wendland_c2"};

@@ -8,6 +8,8 @@
 #include "ryushi/sim.h"
 #include "ryushi/solid.h"
 #include "schemes/iisph/iisph.h"
+#include "ryushi/open_boundary.h"
+#include "ryushi/probes.h"
 
 static ry_status probe_mass(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;

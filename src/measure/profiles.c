@@ -12,6 +12,7 @@
 
 #include "ryushi/atomic_file.h"
 #include "ryushi/sim.h"
+#include "ryushi/probes.h"
 
 /* Values per point: velocity components (dim), pressure, density. */
 static int nvalues(int dim) {

@@ -7,6 +7,8 @@
 #include "ryushi/atomic_file.h"
 #include "linalg/small.h"
 #include "ryushi/validate.h"
+#include "ryushi/probes.h"
+#include "ryushi/run.h"
 
 ry_status ry_setup_case_file(const char *path, int nset, const char *const *sets,
                              const char *out_dir, ry_sim *sim, ry_error *err) {

@@ -9,6 +9,9 @@
 #include "core/guard_check.h"
 #include "ryushi/atomic_file.h"
 #include "ryushi/output.h"
+#include "ryushi/clock.h"
+#include "ryushi/open_boundary.h"
+#include "ryushi/run.h"
 
 /* Bisection steps per cut: the cut is placed to 2^-40 of the node's extent. */
 #define ORB_ITERATIONS 40

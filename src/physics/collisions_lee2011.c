@@ -1,5 +1,6 @@
 /* Artificial repulsion between particles closer than a set distance (include/ryushi/sim.h). */
 #include "ryushi/sim.h"
+#include "ryushi/collisions.h"
 
 /* The collision impulse s of fluid particle i from the entries q0..q1-1 of nj (inlined with a
  * literal dim, so that the sums stay in registers). */

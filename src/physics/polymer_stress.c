@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "linalg/small.h"
+#include "ryushi/rheology.h"
 
 ry_status ry_sph_rheo_init(ry_sph_rheo *r, ry_sim *sim, ry_error *err) {
     memset(r, 0, sizeof *r);

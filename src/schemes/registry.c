@@ -6,6 +6,7 @@
 #include "ryushi/solid.h"
 #include "schemes/iisph/iisph.h"
 #include "schemes/wcsph/wcsph.h"
+#include "ryushi/schemes.h"
 
 /* "static": particles stay where they are (for setting up and inspecting geometry). */
 static ry_status static_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {

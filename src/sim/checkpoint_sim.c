@@ -12,6 +12,8 @@
 #include "ryushi/checkpoint.h"
 #include "ryushi/output.h"
 #include "ryushi/sim.h"
+#include "ryushi/clock.h"
+#include "ryushi/run.h"
 
 enum { MAX_VARS = 64 };
 

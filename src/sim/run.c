@@ -7,6 +7,9 @@
 #include "ryushi/sim.h"
 #include "ryushi/validate.h"
 #include "core/guard_check.h"
+#include "ryushi/clock.h"
+#include "ryushi/open_boundary.h"
+#include "ryushi/run.h"
 
 /* A checkpoint due after this step by the case's policy: 1 on the simulated schedule
  * (interval, every_steps), 2 by the wall clock alone, 0 none. */

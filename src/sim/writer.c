@@ -7,6 +7,8 @@
 #include "sim/writer.h"
 #include "ryushi/atomic_file.h"
 #include "ryushi/output.h"
+#include "ryushi/probes.h"
+#include "ryushi/run.h"
 
 typedef struct writer {
     int n, cap;

@@ -12,6 +12,7 @@
 #define RY_TMPDIR_PREFIX "ryushi_test_"
 #endif
 #include "tmpdir.h" /* tmpdir, and make_tmpdir / remove_tmpdir for group set-up */
+#include "ryushi/run.h"
 
 static char root[2048];
 

@@ -10,6 +10,7 @@
 
 #include "ryushi/solid.h"
 #include "ryushi/validate.h"
+#include "ryushi/run.h"
 
 static char root[2048], tmpdir[256];
 

@@ -14,6 +14,7 @@
 #include "ryushi/validate.h"
 #define RY_TMPDIR_PREFIX "ryushi_iisph_"
 #include "run_case.h"
+#include "ryushi/run.h"
 
 /* Water at rest in a tank (cases/hydrostatic_iisph.yaml, H = 0.2 m, dx = 5 mm, started with
  * zero pressure): after 0.5 s the pressure of the lowest fluid layer, away from the side walls,

@@ -22,6 +22,7 @@
 #include "tmpdir.h"
 
 #include "run_case.h"
+#include "ryushi/run.h"
 
 #define RY_PI_T 3.14159265358979323846
 

@@ -18,6 +18,8 @@
 #include "ryushi/neighbor.h"
 #include "ryushi/sim.h"
 #include "ryushi/validate.h"
+#include "ryushi/open_boundary.h"
+#include "ryushi/run.h"
 
 static char root[2048], tmpdir[256];
 

@@ -20,6 +20,7 @@
 #include "tmpdir.h"
 
 #include "run_case.h"
+#include "ryushi/run.h"
 
 #define H 1.0e-3  /* channel width of the cases [m] */
 #define L0 5.0e-5 /* their spacing [m] */

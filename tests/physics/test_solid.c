@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "solid_test.h"
+#include "ryushi/run.h"
 
 static const double t_beam = 0.05, E_beam = 96000.0, nu_beam = 0.3;
 

@@ -9,6 +9,7 @@
 #include <math.h>
 
 #include "solid_test.h"
+#include "ryushi/run.h"
 
 /* End load P = 0.01 N, 4 particles across the thickness: the tip deflection per unit load
  * within 2.5 % of Euler-Bernoulli plus Timoshenko shear, 1/3 + L / (kappa G A) with Cowper's

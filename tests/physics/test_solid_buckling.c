@@ -9,6 +9,7 @@
 #include <math.h>
 
 #include "solid_test.h"
+#include "ryushi/run.h"
 
 /* The filament of cases/filament_buckling.yaml: EI = 2.2e-23 N m^2, t = 0.25 um. */
 static const double fil_t = 0.25e-6, fil_EI = 2.2e-23;

@@ -9,6 +9,7 @@
 #include <math.h>
 
 #include "solid_test.h"
+#include "ryushi/run.h"
 
 /* Thin-plate period of the plate of cases/oscillating_plate.yaml: 0.25403 s. */
 static double plate_period(void) {

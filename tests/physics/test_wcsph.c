@@ -16,6 +16,7 @@
 #include "ryushi/validate.h"
 #define RY_TMPDIR_PREFIX "ryushi_wcsph_"
 #include "run_case.h"
+#include "ryushi/run.h"
 
 static void path(char *buf, size_t size, const char *rel) {
     snprintf(buf, size, "%s/%s", root, rel);

@@ -18,6 +18,8 @@
 
 #define RY_TMPDIR_PREFIX "ryushi_droplet_"
 #include "tmpdir.h"
+#include "ryushi/probes.h"
+#include "ryushi/run.h"
 
 /* A column of embolic liquid in a nozzle (x 0..0.4 mm, y 1..2 mm) and a droplet hanging below
  * the tip (y = 1 mm): x -0.2..0.6 mm, y 0.4..1 mm, spacing 0.1 mm, in water. */

@@ -17,6 +17,8 @@
 
 #define RY_TMPDIR_PREFIX "ryushi_profiles_"
 #include "tmpdir.h"
+#include "ryushi/probes.h"
+#include "ryushi/run.h"
 
 /* A 1 x 1 box of fluid at rest (scheme `static`), 40 x 40 particles, with two profiles. */
 static const char *case_text(char *buf, size_t size, const char *profiles) {

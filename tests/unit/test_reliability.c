@@ -18,6 +18,9 @@
 
 #define RY_TMPDIR_PREFIX "ryushi_guard_"
 #include "tmpdir.h"
+#include "ryushi/clock.h"
+#include "ryushi/probes.h"
+#include "ryushi/run.h"
 
 /* A small WCSPH dam break: 20 x 40 fluid particles in an open tank. */
 static ry_status setup(ry_sim *sim, ry_case **c, ry_error *err) {

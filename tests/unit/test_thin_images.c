@@ -20,6 +20,7 @@
 
 #define RY_TMPDIR_PREFIX "ryushi_thin_images_"
 #include "tmpdir.h"
+#include "ryushi/run.h"
 
 #define L0 2.0e-4
 

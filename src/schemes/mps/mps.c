@@ -33,6 +33,8 @@
 #include "ryushi/surface_tension.h"
 #include "physics/colour_field.h"
 #include "pairs/pair_cache.h"
+#include "ryushi/collisions.h"
+#include "ryushi/rheology.h"
 
 enum { SRC_MIXED, SRC_NUMBER_DENSITY };
 enum { VISC_EXPLICIT, VISC_IMPLICIT, VISC_NONE, VISC_MIXED };

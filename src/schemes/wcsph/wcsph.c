@@ -37,6 +37,7 @@
 #include "pairs/pair_cache.h"
 #include "physics/polymer_stress.h"
 #include "schemes/wcsph/wcsph.h"
+#include "ryushi/collisions.h"
 
 enum { DENS_CONTINUITY, DENS_SUMMATION };
 enum { EOS_TAIT, EOS_LINEAR, EOS_IDEAL_GAS };

@@ -1,0 +1,25 @@
+/* ryushi — measurements: the probes (columns of series.csv) and line profiles. */
+#ifndef RYUSHI_PROBES_H
+#define RYUSHI_PROBES_H
+
+#include "ryushi/sim.h"
+
+/* The registered probes, NULL-terminated. */
+const ry_probe *const *ry_probes(void);
+
+/* Profiles: read from the case (ry_sim_setup calls it), sampled and written as
+ * profile_NAME.csv at each output time (ry_sim_write_output calls it), freed. */
+ry_status ry_profiles_setup(ry_sim *sim, ry_case *c, ry_error *err);
+ry_status ry_profiles_output(ry_sim *sim, ry_error *err);
+void ry_profiles_free(ry_sim *sim);
+const ry_profile *ry_profile_find(const ry_sim *sim, const char *name);
+/* Point k of a profile (x has 3 entries, unused ones 0). */
+void ry_profile_point(const ry_sim *sim, const ry_profile *pf, int k, double *x);
+/* Mean so far of value `value` (0..dim-1 velocity, dim pressure, dim + 1 density) at point k;
+ * NAN before the first sample. */
+double ry_profile_mean(const ry_sim *sim, const ry_profile *pf, int k, int value);
+/* Shepard interpolation at x of velocity, pressure and density (dim + 2 values) over fluid and
+ * wall particles; 0 (and NANs) when no particle is within the kernel support. */
+int ry_sample_point(const ry_sim *sim, const double *x, double *out);
+
+#endif
