@@ -4,6 +4,12 @@
 
 #include "ryushi/sim.h"
 
+/* Contact angle [degrees] of a sessile drop shaped as a circular cap (2D: a circular segment
+ * of area A; 3D: a spherical cap of volume V) of height h on a flat wall: 2D, theta solves
+ * (1 - cos theta)^2 / (theta - sin theta cos theta) = h^2 / A (bisection); 3D,
+ * cos theta = (1 - 2 q) / (1 + q), q = pi h^3 / (3 V). NAN when h or A is not positive. */
+double ry_cap_contact_angle(int dim, double h, double size);
+
 /* The registered probes, NULL-terminated. */
 const ry_probe *const *ry_probes(void);
 

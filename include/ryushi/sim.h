@@ -52,6 +52,10 @@ typedef struct ry_scheme_type {
     int (*state_vars)(void *state, ry_state_var *vars, int max);
     /* Optional: a line of `key=value` statistics for the run summary (e.g. solver iterations). */
     void (*report)(void *state, char *buf, size_t size);
+    /* Optional: the statistic `name` of the scheme's current state into *value (e.g.
+     * "pressure_iterations"); returns 0 when the scheme keeps no statistic of that name.
+     * docs/ARCHITECTURE.md lists the names in use. */
+    int (*stat)(const ry_sim *sim, const void *state, const char *name, double *value);
 } ry_scheme_type;
 
 /* Memory per particle of a set-up simulation: particle fields, cells, neighbour list and the
@@ -316,6 +320,12 @@ int ry_sim_body_of(const ry_sim *sim, int64_t id);
 static inline int ry_sim_searched(const ry_sim *sim) {
     return sim->nl_restore || (sim->cells_only ? sim->cells.start != NULL : sim->nl.offset != NULL);
 }
+
+/* The running scheme's statistic `name` (ry_scheme_type.stat) into *value; returns 0, and leaves
+ * *value alone, when the scheme keeps none of that name. */
+int ry_sim_stat(const ry_sim *sim, const char *name, double *value);
+/* The same as a value: NAN when the scheme keeps no statistic of that name. */
+double ry_sim_stat_value(const ry_sim *sim, const char *name);
 
 /* Checks every particle for non-finite or runaway values and the domain; RY_ERR_UNSTABLE with
  * the first bad particles named. */

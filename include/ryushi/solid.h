@@ -1,36 +1,17 @@
-/* ryushi — SPH for elastic solids (seed 000, SPEC section 2): the scheme `solid` and what
- * measures its beams.
- *
- * Beams lie along x: the solid particles (kind solid) form the beam, the particles of kind wall
- * are clamped (fixed at their initial position) and should fill a few layers behind the root so
- * that the kernel support of the root particles is complete. The beam's root is half a spacing
- * before its first particle column, its free end half a spacing after the last one; its length
- * L is the distance between the two and its cross-section A = (solid volume) / L. */
+/* ryushi — what measures the beams of the scheme `solid` (SPH for elastic solids, seed 000,
+ * SPEC section 2): the centreline and the reference solutions (beams, vibrating plate, buckled
+ * column). The beam's geometry is in ryushi/beam.h. */
 #ifndef RYUSHI_SOLID_H
 #define RYUSHI_SOLID_H
 
+#include "ryushi/beam.h"
 #include "ryushi/sim.h"
-
-extern const ry_scheme_type ry_scheme_solid;
-
-/* Probes of series.csv for solids (listed by `ryushi probes`). */
-extern const ry_probe ry_probe_tip_deflection, ry_probe_tip_axial, ry_probe_residual,
-    ry_probe_solid_kinetic_energy, ry_probe_strain_energy, ry_probe_min_spacing;
-
-/* Beam geometry of the solid particles: root x, length L, cross-section A, spacing of the
- * particle columns. RY_ERR_INPUT when there is no solid particle. */
-typedef struct ry_beam {
-    double x_root, length, area;
-    double centre[3]; /* reference centroid of the cross-section (y, z) */
-    int ncol;         /* particle columns along x */
-} ry_beam;
-ry_status ry_beam_geometry(const ry_sim *sim, ry_beam *beam, ry_error *err);
 
 /* Position of the beam's centreline at arc length s from the root (0 <= s <= L): the mean
  * position of each particle column (by reference x), interpolated linearly between column
  * centres and extrapolated along the first and last segment to the root and the free end.
  * disp (may be NULL) receives the displacement from the reference centreline. Needs the
- * scheme `solid` (reference positions). */
+ * reference positions (x0, y0, z0) that the scheme `solid` keeps. */
 ry_status ry_beam_centreline(const ry_sim *sim, double s, double *pos, double *disp, ry_error *err);
 
 /* Reference solutions for a cantilever of length L clamped at x = 0 (unit intensity: the
@@ -51,10 +32,6 @@ double ry_beam_deflection_shear(ry_beam_load load, double L, double kappa_GA, do
  * position (x along the undeformed beam, y along the load) in units of L, and the tip angle. */
 void ry_elastica_end_load(double alpha2, double *x_tip, double *y_tip, double *theta_tip);
 
-/* k1 L = 1.8751040687: the first root of cos(kL) cosh(kL) = -1, the first bending mode of a
- * clamped-free beam. */
-#define RY_CANTILEVER_KL1 1.8751040687119611
-
 /* Angular frequency of the first bending mode of a clamped-free plate of length L and
  * thickness H in cylindrical bending (thin-plate theory, plane strain):
  * omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)), k = RY_CANTILEVER_KL1 / L. */
@@ -70,10 +47,5 @@ void ry_elliptic_ke(double p, double *K, double *E);
  * undeformed axis from the root, 2 E(p) / K(p) - 1, and across it, 2 p / K(p). At or below the
  * critical load the column stays straight: (1, 0, 0). */
 void ry_elastica_column(double load_ratio, double *x_tip, double *y_tip, double *theta_tip);
-
-/* Relative residual of the last force evaluation of the scheme `solid`:
- * |f_internal + f_external| / |f_external| over the free solid particles (the absolute net force
- * norm when there is no external force); NAN for another scheme. */
-double ry_solid_residual(const ry_sim *sim);
 
 #endif

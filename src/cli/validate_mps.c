@@ -70,7 +70,8 @@ static void validate_hydrostatic(const char *root, const char *out, int quick, i
     printf("  mean kinetic energy %.3g J/m (1-%.1f s), %.3g J/m (%.1f-%.0f s), rms speed %.4f m/s; "
            "largest speed %.3f m/s; %.2f PPE iterations per step; %.1f s wall\n",
            k1, tmid, k2, tmid, tend, vrms, ry_column_max(&s, "max_speed"),
-           (double)ry_mps_total_iterations(&sim) / (double)stats.steps, stats.wall_s);
+           ry_sim_stat_value(&sim, "pressure_iterations_total") / (double)stats.steps,
+           stats.wall_s);
     ry_cli_check("pressure at depths of 5 to 38 spacings within 2 % of rho g h", worst <= 0.02,
                  failures);
     ry_cli_check("no growing oscillation (kinetic energy of the second half at most 1.25 times "
@@ -129,7 +130,7 @@ static void run_drop(const char *root, const char *out, const drop_case *dc, con
      * (docs/validation.md) */
     const ry_oscillation_fit f = ry_drop_shape_fit(&s, T);
     const double fit_err = f.period / T - 1;
-    const double its = (double)ry_mps_total_iterations(&sim) / (double)stats.steps;
+    const double its = ry_sim_stat_value(&sim, "pressure_iterations_total") / (double)stats.steps;
     const double sps = stats.steps / stats.wall_s;
     printf("  %-10s %-13s %8zu %8.3f %8.3f %+7.1f%% %8.3f %+7.1f%% %8.3f %+7.1f%% %7ld %8.1f "
            "%8.2f %8.1f\n",

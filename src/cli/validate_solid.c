@@ -60,7 +60,7 @@ static ry_status run_beam(const char *root, const char *out, int ki, int n, cons
         st = ry_beam_centreline(&sim, prof_x[k], NULL, d, err);
         prof_w[k] = -d[1] / q;
     }
-    double res = ry_solid_residual(&sim);
+    double res = ry_sim_stat_value(&sim, "residual");
     if (st == RY_OK && !(res < 1e-5))
         st = ry_error_set(err, RY_ERR_UNSTABLE, "%s: not converged (residual %g)", odir, res);
     ry_sim_free(&sim);
@@ -410,9 +410,9 @@ static ry_status run_filament(const char *root, const char *out, double ratio, i
         cx[k] = pos[0] / fil_L;
         cy[k] = -pos[1] / fil_L;
     }
-    if (st == RY_OK && !(ry_solid_residual(&sim) < 1e-5))
+    if (st == RY_OK && !(ry_sim_stat_value(&sim, "residual") < 1e-5))
         st = ry_error_set(err, RY_ERR_UNSTABLE, "%s: not converged (residual %g)", odir,
-                          ry_solid_residual(&sim));
+                          ry_sim_stat_value(&sim, "residual"));
     ry_sim_free(&sim);
     return st;
 }

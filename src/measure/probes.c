@@ -3,11 +3,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ryushi/mps.h"
+#include "measure/probes_internal.h"
 #include "ryushi/rheology.h"
 #include "ryushi/sim.h"
-#include "ryushi/solid.h"
-#include "schemes/iisph/iisph.h"
 #include "ryushi/open_boundary.h"
 #include "ryushi/probes.h"
 
@@ -512,17 +510,14 @@ static ry_status probe_interface_amplitude(const ry_sim *sim, double *v, ry_erro
 
 /* IISPH pressure-solve iterations: of the last step, and the mean over the run so far. */
 static ry_status probe_iisph_iters(const ry_sim *sim, double *v, ry_error *err) {
-    double last, mean;
-    RY_CHECK(err, ry_iisph_iterations(sim, &last, &mean), RY_ERR_INPUT,
+    RY_CHECK(err, ry_sim_stat(sim, "pressure_iterations_mean", v), RY_ERR_INPUT,
              "measurement 'iisph_iterations' needs scheme iisph");
-    *v = last;
+    ry_sim_stat(sim, "pressure_iterations", v);
     return RY_OK;
 }
 static ry_status probe_iisph_iters_mean(const ry_sim *sim, double *v, ry_error *err) {
-    double last, mean;
-    RY_CHECK(err, ry_iisph_iterations(sim, &last, &mean), RY_ERR_INPUT,
+    RY_CHECK(err, ry_sim_stat(sim, "pressure_iterations_mean", v), RY_ERR_INPUT,
              "measurement 'iisph_iterations_mean' needs scheme iisph");
-    *v = mean;
     return RY_OK;
 }
 

@@ -1,12 +1,11 @@
 /* The scheme registry: every scheme a case can name in `scheme.name`. */
 #include <string.h>
 
-#include "ryushi/mps.h"
-#include "ryushi/sim.h"
-#include "ryushi/solid.h"
+#include "ryushi/schemes.h"
+#include "schemes/mps/mps.h"
+#include "schemes/solid/solid.h"
 #include "schemes/iisph/iisph.h"
 #include "schemes/wcsph/wcsph.h"
-#include "ryushi/schemes.h"
 
 /* "static": particles stay where they are (for setting up and inspecting geometry). */
 static ry_status static_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
@@ -37,7 +36,8 @@ static const ry_scheme_type scheme_static = {
     "static",    "particles do not move (geometry set-up and output only)",
     static_init, static_dt,
     static_step, static_free,
-    NULL,        NULL};
+    NULL,        NULL,
+    NULL};
 
 static const ry_scheme_type *const all_schemes[] = {
     &ry_scheme_wcsph, &ry_scheme_iisph, &ry_scheme_mps, &ry_scheme_solid, &scheme_static, NULL};

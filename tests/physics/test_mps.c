@@ -106,7 +106,8 @@ static void test_deflation(void **state) {
         dmax = fmax(dmax, fabs(pa[i] - pb[i]));
         pmax = fmax(pmax, fabs(pa[i]));
     }
-    const long ia = ry_mps_total_iterations(&a), ib = ry_mps_total_iterations(&b);
+    const long ia = (long)ry_sim_stat_value(&a, "pressure_iterations_total"),
+               ib = (long)ry_sim_stat_value(&b, "pressure_iterations_total");
     printf("deflation: pressure iterations %ld without, %ld with (%.2f); largest pressure "
            "difference %.3g of %.1f Pa\n",
            ia, ib, (double)ib / ia, dmax, pmax);
@@ -233,7 +234,7 @@ static void test_thin_wall_cut(void **state) {
     ry_table s;
     ry_sim sim;
     run("cases/mps_thin_wall_cavities.yaml", "thin_cut", 3, sets, &s, &sim);
-    const size_t cut = ry_mps_cut_pairs(&sim), lo = crossing_pairs(&sim, 0.7),
+    const size_t cut = (size_t)ry_sim_stat_value(&sim, "cut_pairs"), lo = crossing_pairs(&sim, 0.7),
                  hi = crossing_pairs(&sim, 0.8);
     printf("thin wall: %zu pairs cut, %zu-%zu cross the wall\n", cut, lo, hi);
     assert_true(lo > 100 && lo <= cut && cut <= hi);
@@ -241,7 +242,7 @@ static void test_thin_wall_cut(void **state) {
     ry_table_free(&s);
     sets[2] = "scheme.thin_wall_cut=false";
     run("cases/mps_thin_wall_cavities.yaml", "thin_nocut", 3, sets, &s, &sim);
-    assert_true(ry_mps_cut_pairs(&sim) == 0);
+    assert_true((size_t)ry_sim_stat_value(&sim, "cut_pairs") == 0);
     ry_sim_free(&sim);
     ry_table_free(&s);
 }

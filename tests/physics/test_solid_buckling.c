@@ -28,7 +28,7 @@ static void run_filament(double fil_L, double ratio, const char *sub, double *x,
     double pos[3];
     ry_error err;
     assert_int_equal(ry_beam_centreline(&sim, fil_L, pos, NULL, &err), RY_OK);
-    assert_true(ry_solid_residual(&sim) < 1e-5);
+    assert_true(ry_sim_stat_value(&sim, "residual") < 1e-5);
     *x = pos[0] / fil_L;
     *w = -pos[1] / fil_L;
     ry_sim_free(&sim);

@@ -1287,11 +1287,17 @@ static void iisph_report(void *state, char *buf, size_t size) {
                  (double)s->viters_total / solves);
 }
 
-int ry_iisph_iterations(const ry_sim *sim, double *last, double *mean) {
-    if (sim->scheme != &ry_scheme_iisph || !sim->scheme_state) return 0;
-    const iisph *s = sim->scheme_state;
-    *last = (double)s->iters_last;
-    *mean = s->solves ? (double)s->iters_total / (double)s->solves : 0.0;
+/* Statistics: pressure-solve iterations of the last step and their mean over the run so far. */
+static int iisph_stat(const ry_sim *sim, const void *state, const char *name, double *value) {
+    (void)sim;
+    const iisph *s = state;
+    if (!strcmp(name, "pressure_iterations")) {
+        *value = (double)s->iters_last;
+    } else if (!strcmp(name, "pressure_iterations_mean")) {
+        *value = s->solves ? (double)s->iters_total / (double)s->solves : 0.0;
+    } else {
+        return 0;
+    }
     return 1;
 }
 
@@ -1304,4 +1310,5 @@ const ry_scheme_type ry_scheme_iisph = {
     iisph_step,
     iisph_free,
     iisph_vars,
-    iisph_report};
+    iisph_report,
+    iisph_stat};

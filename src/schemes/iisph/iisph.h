@@ -6,8 +6,4 @@
 
 extern const ry_scheme_type ry_scheme_iisph;
 
-/* Pressure-solve iterations of the last step and their mean over the run so far; 0 (and
- * nothing set) when the simulation does not run IISPH. */
-int ry_iisph_iterations(const ry_sim *sim, double *last, double *mean);
-
 #endif

@@ -43,15 +43,6 @@ static const char *const integration_names[] = {"nodal", "gradient", NULL};
 static const char *const formulation_names[] = {"total_lagrangian", "updated_lagrangian", NULL};
 static const char *const initial_names[] = {"none", "cantilever_mode", NULL};
 
-static const solid *solid_state(const ry_sim *sim) {
-    return sim->scheme == &ry_scheme_solid ? sim->scheme_state : NULL;
-}
-
-double ry_solid_residual(const ry_sim *sim) {
-    const solid *s = solid_state(sim);
-    return s ? s->residual : NAN;
-}
-
 /* ---- materials ---------------------------------------------------------------------------- */
 
 static ry_status read_material(ry_sim *sim, ry_case *c, solid *s, int m, ry_error *err) {
@@ -87,69 +78,7 @@ static ry_status read_material(ry_sim *sim, ry_case *c, solid *s, int m, ry_erro
     return RY_OK;
 }
 
-/* ---- beam geometry and loads -------------------------------------------------------------- */
-
-ry_status ry_beam_geometry(const ry_sim *sim, ry_beam *b, ry_error *err) {
-    const ry_particles *ps = &sim->ps;
-    const solid *s = solid_state(sim);
-    const double *X = s ? ps->f[s->f_X[0]] : ps->f[RY_F_X];
-    double xmin = INFINITY, xmax = -INFINITY, vol = 0, c[3] = {0, 0, 0};
-    for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_SOLID) continue;
-        xmin = fmin(xmin, X[i]);
-        xmax = fmax(xmax, X[i]);
-        double v = ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
-        vol += v;
-        for (int d = 1; d < sim->dim; ++d)
-            c[d] += v * (s ? ps->f[s->f_X[d]][i] : ps->f[RY_F_X + d][i]);
-    }
-    RY_CHECK(err, vol > 0, RY_ERR_INPUT, "beam: no solid particle");
-    memset(b, 0, sizeof *b);
-    b->x_root = xmin - 0.5 * sim->dx;
-    b->length = xmax - xmin + sim->dx;
-    b->area = vol / b->length;
-    for (int d = 1; d < sim->dim; ++d) b->centre[d] = c[d] / vol;
-    b->ncol = (int)lround((xmax - xmin) / sim->dx) + 1;
-    return RY_OK;
-}
-
-/* Column (0 .. ncol-1) of a solid particle by its reference x. */
-static int column_of(const ry_beam *b, double dx, double X) {
-    int k = (int)lround((X - b->x_root) / dx - 0.5);
-    return k < 0 ? 0 : k >= b->ncol ? b->ncol - 1 : k;
-}
-
-ry_status ry_beam_centreline(const ry_sim *sim, double sx, double *pos, double *disp,
-                             ry_error *err) {
-    const solid *s = solid_state(sim);
-    RY_CHECK(err, s != NULL, RY_ERR_INPUT, "beam centreline: needs the scheme 'solid'");
-    ry_beam b;
-    RY_TRY(ry_beam_geometry(sim, &b, err));
-    RY_CHECK(err, b.ncol >= 2, RY_ERR_INPUT, "beam centreline: the beam has a single column");
-    const ry_particles *ps = &sim->ps;
-    const int dim = sim->dim;
-    /* the two columns around s (or the nearest two at the ends) */
-    double t = sx / sim->dx - 0.5;
-    int k0 = (int)floor(t);
-    if (k0 < 0) k0 = 0;
-    if (k0 > b.ncol - 2) k0 = b.ncol - 2;
-    double w1 = t - k0, p[2][3] = {{0}}, cnt[2] = {0, 0};
-    for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_SOLID) continue;
-        int k = column_of(&b, sim->dx, ps->f[s->f_X[0]][i]) - k0;
-        if (k < 0 || k > 1) continue;
-        cnt[k] += 1;
-        for (int d = 0; d < dim; ++d) p[k][d] += ps->f[RY_F_X + d][i];
-    }
-    RY_CHECK(err, cnt[0] > 0 && cnt[1] > 0, RY_ERR_INTERNAL, "beam centreline: empty column");
-    for (int d = 0; d < 3; ++d) {
-        double q = d < dim ? (1 - w1) * p[0][d] / cnt[0] + w1 * p[1][d] / cnt[1] : 0.0;
-        double ref = d == 0 ? b.x_root + sx : b.centre[d];
-        if (pos) pos[d] = q;
-        if (disp) disp[d] = d < dim ? q - ref : 0.0;
-    }
-    return RY_OK;
-}
+/* ---- loads -------------------------------------------------------------------------------- */
 
 /* External force per particle (N; per metre of depth in 2D) for the load types:
  *   end      P = load.intensity at the free end: statically equivalent to a point load at
@@ -167,11 +96,12 @@ static ry_status load_forces(ry_sim *sim, solid *s, ry_error *err) {
     double *count = calloc((size_t)b.ncol, sizeof *count);
     RY_CHECK(err, count != NULL, RY_ERR_NOMEM, "out of memory");
     for (size_t i = 0; i < ps->n; ++i)
-        if (ps->kind[i] == RY_KIND_SOLID) count[column_of(&b, sim->dx, ps->f[s->f_X[0]][i])] += 1;
+        if (ps->kind[i] == RY_KIND_SOLID)
+            count[ry_beam_column(&b, sim->dx, ps->f[s->f_X[0]][i])] += 1;
     const double pi = 3.14159265358979323846;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_SOLID) continue;
-        int k = column_of(&b, sim->dx, ps->f[s->f_X[0]][i]);
+        int k = ry_beam_column(&b, sim->dx, ps->f[s->f_X[0]][i]);
         double sx = ps->f[s->f_X[0]][i] - b.x_root, f = 0;
         double v = ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
         switch (s->load) {
@@ -761,90 +691,17 @@ static int solid_vars(void *state, ry_state_var *v, int max) {
     return n;
 }
 
-const ry_scheme_type ry_scheme_solid = {
-    "solid",
-    "elastic solid: total-Lagrangian SPH with corrected kernel gradients, or updated-Lagrangian "
-    "with Jaumann-rate stress and artificial stress (seed 000)",
-    solid_init,
-    solid_dt,
-    solid_step,
-    solid_free,
-    solid_vars,
-    NULL};
-
-/* ---- probes ------------------------------------------------------------------------------- */
-
-static ry_status probe_tip(const ry_sim *sim, double *v, int axial, ry_error *err) {
-    const solid *s = solid_state(sim);
-    *v = NAN;
-    if (!s) return RY_OK;
-    ry_beam b;
-    double u[3];
-    RY_TRY(ry_beam_geometry(sim, &b, err));
-    RY_TRY(ry_beam_centreline(sim, b.length, NULL, u, err));
-    if (axial) {
-        *v = u[0];
-    } else {
-        const double *dir = s->probe_dir;
-        *v = u[0] * dir[0] + u[1] * dir[1] + u[2] * dir[2];
-    }
-    return RY_OK;
-}
-static ry_status probe_tip_deflection(const ry_sim *sim, double *v, ry_error *err) {
-    return probe_tip(sim, v, 0, err);
-}
-static ry_status probe_tip_axial(const ry_sim *sim, double *v, ry_error *err) {
-    return probe_tip(sim, v, 1, err);
-}
-static ry_status probe_residual(const ry_sim *sim, double *v, ry_error *err) {
-    (void)err;
-    *v = ry_solid_residual(sim);
-    return RY_OK;
-}
-static ry_status probe_solid_ke(const ry_sim *sim, double *v, ry_error *err) {
-    (void)err;
-    *v = ry_particles_kinetic_energy(&sim->ps, sim->dim, RY_KIND_SOLID, NULL);
-    return RY_OK;
-}
-static ry_status probe_strain_energy(const ry_sim *sim, double *v, ry_error *err) {
-    (void)err;
-    const solid *s = solid_state(sim);
-    const ry_particles *ps = &sim->ps;
-    double e = 0;
-    if (s)
-        for (size_t i = 0; i < ps->n; ++i)
-            e += ps->f[s->f_psi][i] * ps->f[RY_F_MASS][i] / sim->mat[ps->material[i]].density;
-    *v = s ? e : NAN;
-    return RY_OK;
-}
-
-const ry_probe ry_probe_tip_deflection = {
-    "tip_deflection", "beam: displacement of the free end of the centreline along the load [m]",
-    probe_tip_deflection};
-const ry_probe ry_probe_tip_axial = {
-    "tip_axial", "beam: displacement of the free end of the centreline along x [m]",
-    probe_tip_axial};
-const ry_probe ry_probe_residual = {
-    "residual", "solid: relative residual |f + f_ext| / |f_ext| of the last force evaluation",
-    probe_residual};
-const ry_probe ry_probe_solid_kinetic_energy = {
-    "solid_kinetic_energy", "kinetic energy of the solid particles [J]", probe_solid_ke};
-const ry_probe ry_probe_strain_energy = {
-    "strain_energy", "elastic energy stored in the solid and clamped particles [J]",
-    probe_strain_energy};
+/* ---- statistics ---------------------------------------------------------------------------- */
 
 /* Smallest distance between neighbouring particles of the solid (clamp included), in initial
  * spacings: pairs of the current neighbour list (updated-Lagrangian) or of the reference one
- * (total-Lagrangian). Tensile clumping shows as pairs drawing much closer than a spacing. */
-static ry_status probe_min_spacing(const ry_sim *sim, double *v, ry_error *err) {
-    (void)err;
-    const solid *s = solid_state(sim);
-    *v = NAN;
-    if (!s) return RY_OK;
+ * (total-Lagrangian). Tensile clumping shows as pairs drawing much closer than a spacing. NAN
+ * before a list is built. */
+static double min_spacing(const ry_sim *sim, const solid *s) {
     /* (the current list where the reference one is not built: a distributed run's output) */
     const ry_nlist *nl = s->ul || !s->nl.offset ? &sim->nl : &s->nl;
     const ry_particles *ps = &sim->ps;
-    if (!nl->offset || nl->n != ps->n) return RY_OK;
+    if (!nl->offset || nl->n != ps->n) return NAN;
     double m2 = INFINITY;
     for (size_t i = 0; i < ps->n; ++i)
         for (size_t q = nl->offset[i]; q < nl->offset[i + 1]; ++q) {
@@ -856,9 +713,40 @@ static ry_status probe_min_spacing(const ry_sim *sim, double *v, ry_error *err) 
             }
             m2 = fmin(m2, r2);
         }
-    *v = sqrt(m2) / sim->dx;
-    return RY_OK;
+    return sqrt(m2) / sim->dx;
 }
-const ry_probe ry_probe_min_spacing = {
-    "min_spacing", "solid: smallest distance between neighbouring particles, in initial spacings",
-    probe_min_spacing};
+
+/* Statistics: the relative residual of the last force evaluation, the smallest spacing of
+ * neighbours (min_spacing) and the direction the tip deflection is measured along (the load's,
+ * else the initial velocity's, else -y or -z). */
+static int solid_stat(const ry_sim *sim, const void *state, const char *name, double *value) {
+    static const char *const dir_names[3] = {"load_direction_x", "load_direction_y",
+                                             "load_direction_z"};
+    const solid *s = state;
+    if (!strcmp(name, "residual")) {
+        *value = s->residual;
+        return 1;
+    }
+    if (!strcmp(name, "min_spacing")) {
+        *value = min_spacing(sim, s);
+        return 1;
+    }
+    for (int d = 0; d < 3; ++d)
+        if (!strcmp(name, dir_names[d])) {
+            *value = s->probe_dir[d];
+            return 1;
+        }
+    return 0;
+}
+
+const ry_scheme_type ry_scheme_solid = {
+    "solid",
+    "elastic solid: total-Lagrangian SPH with corrected kernel gradients, or updated-Lagrangian "
+    "with Jaumann-rate stress and artificial stress (seed 000)",
+    solid_init,
+    solid_dt,
+    solid_step,
+    solid_free,
+    solid_vars,
+    NULL,
+    solid_stat};

@@ -3,7 +3,8 @@
 #ifndef RYUSHI_SOLID_INTERNAL_H
 #define RYUSHI_SOLID_INTERNAL_H
 
-#include "ryushi/solid.h"
+#include "ryushi/beam.h"
+#include "schemes/solid/solid.h"
 
 enum { LOAD_NONE, LOAD_END, LOAD_UNIFORM, LOAD_LINEAR, LOAD_COSINE };
 enum { RELAX_NONE, RELAX_KINETIC, RELAX_VISCOUS };

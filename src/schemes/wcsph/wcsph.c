@@ -2119,4 +2119,5 @@ const ry_scheme_type ry_scheme_wcsph = {
     wcsph_step,
     wcsph_free,
     wcsph_vars,
+    NULL,
     NULL};
