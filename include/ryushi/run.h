@@ -63,4 +63,14 @@ ry_status ry_sim_snapshot_take(ry_sim *sim, ry_error *err);
 ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_error *err);
 void ry_sim_snapshot_free(ry_sim *sim);
 
+/* Loads a case file, applies overrides ("key=value") and sets it up with its output open in
+ * out_dir, ready to run. On failure sim is freed. */
+ry_status ry_setup_case_file(const char *path, int nset, const char *const *sets,
+                             const char *out_dir, ry_sim *sim, ry_error *err);
+
+/* Loads a case file, applies overrides ("key=value"), sets it up with output in out_dir and
+ * runs it. On success sim holds the final state (the caller frees it with ry_sim_free). */
+ry_status ry_run_case_file(const char *path, int nset, const char *const *sets, const char *out_dir,
+                           ry_sim *sim, ry_run_stats *stats, ry_error *err);
+
 #endif

@@ -1,4 +1,5 @@
-/* ryushi — validation: runs cases and compares their measurements with reference data. */
+/* ryushi — validation: measured series and states compared with reference data and analytic
+ * solutions (the cases are run through ry_run_case_file, ryushi/run.h). */
 #ifndef RYUSHI_VALIDATE_H
 #define RYUSHI_VALIDATE_H
 
@@ -6,17 +7,6 @@
 
 #include "ryushi/csv.h"
 #include "ryushi/sim.h"
-#include "ryushi/run.h"
-
-/* Loads a case file, applies overrides ("key=value") and sets it up with its output open in
- * out_dir, ready to run. On failure sim is freed. */
-ry_status ry_setup_case_file(const char *path, int nset, const char *const *sets,
-                             const char *out_dir, ry_sim *sim, ry_error *err);
-
-/* Loads a case file, applies overrides ("key=value"), sets it up with output in out_dir and
- * runs it. On success sim holds the final state (the caller frees it with ry_sim_free). */
-ry_status ry_run_case_file(const char *path, int nset, const char *const *sets, const char *out_dir,
-                           ry_sim *sim, ry_run_stats *stats, ry_error *err);
 
 /* Surge front against Martin & Moyce: Z = front_x / a against T = t sqrt(2 g / a). */
 typedef struct ry_front_cmp {

@@ -86,6 +86,12 @@ void ry_solid_residual_update(ry_sim *sim, solid *s);
 /* Index of the pair (j, i) in a symmetric neighbour list with sorted rows. */
 size_t ry_solid_reverse_pair(const ry_nlist *nl, size_t i, size_t j);
 
+/* Total-Lagrangian formulation (total.c): the reference configuration's neighbour list, kernel
+ * gradients and corrections (built once), and the stresses, accelerations and residual for the
+ * current positions. */
+ry_status ry_solid_tl_build(ry_sim *sim, solid *s, ry_error *err);
+void ry_solid_tl_forces(ry_sim *sim, solid *s);
+
 /* Updated-Lagrangian formulation (updated.c): reads its keys, registers its fields and
  * allocates its arrays; evaluate brings the neighbour list up to date, advances density and
  * deviatoric stress by dt (0 on the first call) with the velocities and positions now current,
