@@ -1,0 +1,489 @@
+/* The cell-range pair loop of WCSPH (scheme.pair_loop: cells): the equations of the
+ * neighbour-list loop (wcsph_list.c) for the cases that wc_fast_eligible admits, with its
+ * candidate ranges (wc_fast_ranges) and its single-precision records (wc_fpack_fluid).
+ *
+ * The particles are sorted by cell at every neighbour search (sim->sort_always), so the
+ * candidates of particle i are the particles of the 3 (2D) or 9 (3D) rows of cells around its
+ * cell at the last search: consecutive index ranges, a superset of the Verlet list. The pair
+ * terms run as one SIMD loop over each range, in single precision (eight pairs per AVX2
+ * instruction), with the pairs beyond the support masked: no neighbour list is read and no
+ * neighbour data is gathered or copied. Separations are formed from the double-precision
+ * positions and then rounded; densities enter as deviations from a reference density (so that
+ * rho_j - rho_i keeps its digits); the pair terms are summed in double precision. The state and
+ * the integrator stay in double precision. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "schemes/wcsph/wcsph_internal.h"
+
+typedef struct fast_ctx {
+    const uint8_t *kind;
+    const uint32_t *rng;
+    const float *fk; /* field k of particle j: fk[k * fs + j] */
+    size_t fs;
+    const double *x[3], *rho;
+    double *a[3], *drho;
+    const double *v[3], *rho0m;
+    const uint8_t *material;
+    double g[3], diff, rho_ref, inv_c02;
+    float rad2, inv_h, dnorm_h, h0, eta2, alpha, beta, rep_d, rep_r02, c0;
+    int cont, fourtakas;
+} fast_ctx;
+
+/* (dW/dq)/q of the Wendland kernels (q < 2 is masked by the caller). */
+static inline v8f dshape_over_q_v8(const ry_kernel_type kt, v8f q) {
+    const v8f s = 0.5f * q, u = 1.0f - s, u2 = u * u;
+    return kt == RY_KERNEL_WENDLAND_C2 ? -5.0f * u2 * u
+                                       : (-14.0f / 3.0f) * u2 * u2 * u * (1.0f + 5.0f * s);
+}
+
+static inline __attribute__((always_inline)) void fast_particle(const fast_ctx *restrict c,
+                                                                size_t i, const int dim,
+                                                                const ry_kernel_type kt,
+                                                                double *amax2, double *vmax2) {
+    if (c->kind[i] != RY_KIND_FLUID) return;
+    const int nrange = dim > 2 ? 9 : 3;
+    const uint32_t *restrict rg = c->rng + (size_t)i * 2 * (size_t)nrange;
+    const size_t fs = c->fs;
+    const float *restrict fk = c->fk;
+    const double *restrict x0 = c->x[0], *restrict x1 = c->x[1], *restrict x2 = c->x[2];
+    const double xi = x0[i], yi = x1[i], zi = dim > 2 ? x2[i] : 0.0;
+    const float ui = fk[FK_U * fs + i], vi = fk[FK_V * fs + i];
+    const float wi = dim > 2 ? fk[FK_W * fs + i] : 0.0f;
+    const float dri = fk[FK_DRHO * fs + i], pri = fk[FK_PRHO2 * fs + i];
+    const float mui = fk[FK_MU * fs + i];
+    const float rhoi2 = 2.0f * (float)c->rho_ref + dri; /* rho_i + rho_j - dr_j */
+    const float inv_rhoi = (float)(1.0 / c->rho[i]);
+    const float rad2 = c->rad2, inv_h = c->inv_h, dnorm_h = c->dnorm_h, h0 = c->h0;
+    /* -alpha c_ij with c_ij = c0: the cell-range loop serves the Tait and linear equations of
+     * state, whose sound speed is constant. */
+    const float eta2 = c->eta2, hac0 = -c->alpha * c->c0, beta = c->beta;
+    const float rep_d = c->rep_d, rep_r02 = c->rep_r02;
+    const int fourtakas = c->fourtakas;
+    const float fh = fourtakas ? (float)(c->rho0m[c->material[i]] * c->inv_c02) : 0.0f;
+    const float fgx = fh * (float)c->g[0], fgy = fh * (float)c->g[1], fgz = fh * (float)c->g[2];
+    const v8f zero = {0};
+    v8f sx = zero, sy = zero, sz = zero, sr = zero, sd = zero;
+    for (int r = 0; r < nrange; ++r) {
+        for (size_t j = rg[2 * r]; j < rg[2 * r + 1]; j += 8) {
+            const v8f dx = v8_sep(xi, x0 + j), dy = v8_sep(yi, x1 + j);
+            const v8f dz = dim > 2 ? v8_sep(zi, x2 + j) : zero;
+            v8f r2 = dx * dx + dy * dy;
+            if (dim > 2) r2 += dz * dz;
+            /* i itself (r2 = 0) contributes nothing: every term has a factor x_ij or r2, and
+             * the repulsion needs r2 > 0. */
+            const v8f fw = v8_and(r2 < rad2, dnorm_h * dshape_over_q_v8(kt, v8_sqrt(r2) * inv_h));
+            const v8f vx = ui - v8_load(fk + FK_UG * fs + j),
+                      vy = vi - v8_load(fk + FK_VG * fs + j);
+            const v8f vz = dim > 2 ? wi - v8_load(fk + FK_WG * fs + j) : zero;
+            v8f vdx = vx * dx + vy * dy;
+            if (dim > 2) vdx += vz * dz;
+            v8f vdw =
+                (ui - v8_load(fk + FK_U * fs + j)) * dx + (vi - v8_load(fk + FK_V * fs + j)) * dy;
+            if (dim > 2) vdw += (wi - v8_load(fk + FK_W * fs + j)) * dz;
+            const v8f ieta = 1.0f / (r2 + eta2);
+            /* Monaghan's artificial viscosity, active for approaching pairs only. */
+            const v8f mu_ij = h0 * v8_and(vdx < 0.0f, vdx) * ieta;
+            const v8f drj = v8_load(fk + FK_DRHO * fs + j);
+            const v8f pi_ij = (hac0 + beta * mu_ij) * mu_ij * 2.0f / (rhoi2 + drj);
+            const v8f volj = v8_load(fk + FK_VOL * fs + j), isj = v8_load(fk + FK_FLUID * fs + j);
+            v8f fp =
+                -v8_load(fk + FK_MASS * fs + j) * (pri + v8_load(fk + FK_PRHO2 * fs + j) + pi_ij);
+            const v8f fwe = fw * r2 * ieta * volj;
+            const v8f muj = isj * v8_load(fk + FK_MU * fs + j) + (1.0f - isj) * mui;
+            const v8f fv = v8_load(fk + FK_VISC * fs + j) * (mui + muj) * inv_rhoi * fwe;
+            fp *= fw;
+            /* Wall repulsion (r2 < r0^2 lies within the support), rarely active: computed
+             * only for the vectors that need it. (r0/r)^2 is capped at 1e3 so that single
+             * precision cannot overflow. */
+            const v8i on = (isj == 0.0f) & (r2 < rep_r02) & (r2 > 0.0f);
+            if (v8_any(on)) {
+                const v8f inv_r2 = 1.0f / (r2 + v8_and(~on, zero + 1.0f));
+                v8f q2 = rep_r02 * inv_r2;
+                const v8i big = q2 >= 1e3f;
+                q2 = v8_and(~big, q2) + v8_and(big, zero + 1e3f);
+                const v8f q4 = q2 * q2;
+                fp += v8_and(on, rep_d * (q4 * q4 * q4 - q4) * inv_r2);
+            }
+            sx += fp * dx + fv * vx;
+            sy += fp * dy + fv * vy;
+            if (dim > 2) sz += fp * dz + fv * vz;
+            sr += volj * vdw * fw;
+            v8f dd = drj - dri;
+            if (fourtakas) dd += dim > 2 ? fgx * dx + fgy * dy + fgz * dz : fgx * dx + fgy * dy;
+            sd -= isj * dd * fwe;
+        }
+    }
+    const double ai[3] = {v8_sum(sx) + c->g[0], v8_sum(sy) + c->g[1], v8_sum(sz) + c->g[2]};
+    double a2 = 0, v2 = 0;
+    for (int d = 0; d < dim; ++d) {
+        c->a[d][i] = ai[d];
+        a2 += ai[d] * ai[d];
+        v2 += c->v[d][i] * c->v[d][i];
+    }
+    if (c->cont) c->drho[i] = c->rho[i] * v8_sum(sr) + c->diff * v8_sum(sd);
+    *amax2 = a2 > *amax2 ? a2 : *amax2;
+    *vmax2 = v2 > *vmax2 ? v2 : *vmax2;
+}
+
+typedef void (*fast_driver)(const fast_ctx *c, size_t n, force_out *res);
+#define RY_FAST_DRIVER_(DIM, KT)                                                                   \
+    static void fast_##DIM##_##KT(const fast_ctx *c, size_t n, force_out *res) {                   \
+        double amax2 = 0, vmax2 = 0;                                                               \
+        _Pragma("omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)") for (      \
+            size_t i = 0; i < n; ++i) fast_particle(c, i, DIM, KT, &amax2, &vmax2);                \
+        res->amax2 = amax2;                                                                        \
+        res->vmax2 = vmax2;                                                                        \
+    }
+RY_FAST_DRIVER_(2, RY_KERNEL_WENDLAND_C2)
+RY_FAST_DRIVER_(3, RY_KERNEL_WENDLAND_C2)
+RY_FAST_DRIVER_(2, RY_KERNEL_WENDLAND_C4)
+RY_FAST_DRIVER_(3, RY_KERNEL_WENDLAND_C4)
+#undef RY_FAST_DRIVER_
+
+/* Whether the cell-range loop serves this case: Wendland kernels, no periodic directions, no
+ * variable h, energy equation, transport velocity or open boundaries (whose buffers change the
+ * particle set between searches). */
+int wc_fast_eligible(const ry_sim *sim, const wcsph *w, const char **why) {
+    const ry_kernel_type kt = sim->kernel.type;
+    *why = kt != RY_KERNEL_WENDLAND_C2 && kt != RY_KERNEL_WENDLAND_C4 ? "a Wendland kernel"
+           : is_periodic(sim)                                         ? "no periodic directions"
+           : w->variable_h || w->energy                               ? "no variable_h or energy"
+           : w->tvf                                                   ? "no transport_velocity"
+           : sim->nopen > 0                                           ? "no open boundaries"
+           : w->rheo.on                                               ? "Newtonian materials"
+           : w->st.model != RY_ST_NONE                                ? "no surface_tension"
+                                                                      : NULL;
+    return *why == NULL;
+}
+
+/* Whether a cell of the block of 3 x 3 (x 3) around cell (kx, ky, kz) holds fluid. */
+static int fluid_near(const ry_cell_list *cl, const uint8_t *cell_fluid, int kx, int ky, int kz) {
+    const int nx = cl->ncell[0], ny = cl->ncell[1], nz = cl->ncell[2];
+    int f = 0;
+    for (int z = kz - 1; z <= kz + 1; ++z) {
+        if (z < 0 || z >= nz) continue;
+        for (int y = ky - 1; y <= ky + 1; ++y) {
+            if (y < 0 || y >= ny) continue;
+            const size_t row = ((size_t)z * (size_t)ny + (size_t)y) * (size_t)nx;
+            for (int x = kx - 1; x <= kx + 1; ++x)
+                if (x >= 0 && x < nx) f |= cell_fluid[row + (size_t)x];
+        }
+    }
+    return f;
+}
+
+/* The candidates of each particle, from the positions and cells of the last search (the
+ * particles sorted by cell and, within each row of cells, by x): in each of the 3 (2D) or 9
+ * (3D) rows of cells around its cell, the particles within the circle (sphere) of radius
+ * reach = support + skin: in a row at distance e from the particle, those within
+ * x +- sqrt(reach^2 - e^2). A pair within the support now was within reach then (no particle
+ * has moved more than half the skin since), so the ranges hold every neighbour, like the
+ * Verlet list. Each range's length is rounded up to a multiple of 8 (whole vectors) and ranges
+ * that then overlap are merged, so that no pair is counted twice; the particles this adds lie
+ * beyond reach, and the padding after the last particle lies 1e10 m away: the pair loop's
+ * range mask removes both. */
+ry_status wc_fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
+    const ry_cell_list *cl = &sim->cells;
+    const int dim = sim->dim, nrange = dim > 2 ? 9 : 3;
+    const size_t n = sim->ps.n;
+    if (w->rng_cap < n) {
+        uint32_t *r = realloc(w->rng, n * 2 * (size_t)nrange * sizeof *r);
+        RY_CHECK(err, r != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
+        w->rng = r;
+        uint8_t *wet = realloc(w->wet, n);
+        RY_CHECK(err, wet != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
+        w->wet = wet;
+        w->rng_cap = n;
+        w->nrange = nrange;
+    }
+    const double *xr = sim->ps.f[sim->f_xref];
+    const double reach = sim->nl_radius * (1.0 + sim->nl_skin), reach2 = reach * reach;
+    const double *yr = sim->ps.f[sim->f_xref + 1];
+    const double *zr = sim->ps.f[sim->f_xref + (dim > 2 ? 2 : 1)];
+    const size_t *start = cl->start;
+    const int nx = cl->ncell[0], ny = cl->ncell[1], nz = cl->ncell[2];
+    uint32_t *rng = w->rng;
+    if (w->cell_fluid_cap < cl->ncells) {
+        uint8_t *cf = realloc(w->cell_fluid, cl->ncells);
+        RY_CHECK(err, cf != NULL, RY_ERR_NOMEM, "out of memory (%zu cells)", cl->ncells);
+        w->cell_fluid = cf;
+        w->cell_fluid_cap = cl->ncells;
+    }
+    uint8_t *cell_fluid = w->cell_fluid;
+    const uint8_t *kind = sim->ps.kind;
+    const long long ncells = (long long)cl->ncells;
+#pragma omp parallel for schedule(static)
+    for (long long c = 0; c < ncells; ++c) {
+        uint8_t f = 0;
+        for (size_t j = start[c]; j < start[c + 1]; ++j) f |= kind[j] == RY_KIND_FLUID;
+        cell_fluid[c] = f;
+    }
+#pragma omp parallel
+    {
+        /* The bounds of the previous particle of the same cell, per row slot: the particles
+         * of a cell are close in x, so a particle finds its bounds by stepping from there (a
+         * binary search for the first particle of a cell). */
+        size_t prev_cell = SIZE_MAX, lb[9], ub[9];
+        int known[9] = {0};
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; ++i) {
+            const size_t cell = cl->cell_of[i];
+            const int kx = (int)(cell % (size_t)nx), ky = (int)(cell / (size_t)nx % (size_t)ny);
+            const int kz = dim > 2 ? (int)(cell / ((size_t)nx * (size_t)ny)) : 0;
+            const int xa = kx > 0 ? kx - 1 : 0, xb = kx + 1 < nx ? kx + 1 : nx - 1;
+            if (cell != prev_cell)
+                for (int k = 0; k < 9; ++k) known[k] = 0;
+            prev_cell = cell;
+            /* Distances from the particle to the rows of cells above and below (and in front
+             * and behind): a row at distance e holds candidates within x +- sqrt(reach^2 - e^2)
+             * only. The margin covers the rounding of the binning. */
+            const double yi = yr[i], zi = dim > 2 ? zr[i] : 0.0, margin = 1e-9 * reach;
+            const double ylo = cl->lo[1] + ky * cl->cell[1], zlo = cl->lo[2] + kz * cl->cell[2];
+            const double eb = yi - ylo - margin, ea = ylo + cl->cell[1] - yi - margin;
+            const double fb = dim > 2 ? zi - zlo - margin : 0.0;
+            const double fa = dim > 2 ? zlo + cl->cell[2] - zi - margin : 0.0;
+            const double ey[3] = {eb > 0 ? eb : 0.0, 0.0, ea > 0 ? ea : 0.0};
+            const double ez[3] = {fb > 0 ? fb : 0.0, 0.0, fa > 0 ? fa : 0.0};
+            /* Half-widths per row slot, all at once (negative: the row lies beyond reach). */
+            double half[9];
+            for (int k = dim > 2 ? 0 : 3; k < (dim > 2 ? 9 : 6); ++k) {
+                const double e2 = ey[k % 3] * ey[k % 3] + ez[k / 3] * ez[k / 3];
+                half[k] = e2 < reach2 ? sqrt(reach2 - e2) : -1.0;
+            }
+            uint32_t *rg = rng + i * 2 * (size_t)nrange;
+            if (wall_like(&sim->ps, i) && !fluid_near(cl, cell_fluid, kx, ky, kz)) {
+                /* No fluid in the cells around: no candidates the wall pass would use. */
+                for (int r = 0; r < nrange; ++r) rg[2 * r] = rg[2 * r + 1] = 0;
+                w->wet[i] = 0;
+                continue;
+            }
+            int nr = 0;
+            for (int z = kz - 1; z <= kz + 1; ++z) {
+                if (dim < 3 && z != kz) continue;
+                if (z < 0 || z >= nz) continue;
+                for (int y = ky - 1; y <= ky + 1; ++y) {
+                    if (y < 0 || y >= ny) continue;
+                    const int slot = (z - kz + 1) * 3 + (y - ky + 1);
+                    if (half[slot] < 0) continue;
+                    const double lo = xr[i] - half[slot], hi = xr[i] + half[slot];
+                    const size_t row = ((size_t)z * (size_t)ny + (size_t)y) * (size_t)nx;
+                    const size_t ra = start[row + (size_t)xa], b0 = start[row + (size_t)xb + 1];
+                    size_t a, b;
+                    if (known[slot]) {
+                        /* first with x >= lo, first with x > hi */
+                        a = lb[slot];
+                        while (a > ra && xr[a - 1] >= lo) --a;
+                        while (a < b0 && xr[a] < lo) ++a;
+                        b = ub[slot] > a ? ub[slot] : a;
+                        while (b > a && xr[b - 1] > hi) --b;
+                        while (b < b0 && xr[b] <= hi) ++b;
+                    } else {
+                        size_t l = ra, u = b0;
+                        while (l < u) {
+                            const size_t m = l + (u - l) / 2;
+                            if (xr[m] < lo)
+                                l = m + 1;
+                            else
+                                u = m;
+                        }
+                        a = l;
+                        u = b0;
+                        while (l < u) {
+                            const size_t m = l + (u - l) / 2;
+                            if (xr[m] <= hi)
+                                l = m + 1;
+                            else
+                                u = m;
+                        }
+                        b = l;
+                    }
+                    known[slot] = 1;
+                    lb[slot] = a;
+                    ub[slot] = b;
+                    if (b <= a) continue;
+                    if (nr > 0 && a < rg[2 * nr - 1]) {
+                        const size_t a0 = rg[2 * nr - 2];
+                        rg[2 * nr - 1] = (uint32_t)(a0 + ((b - a0 + 7) & ~(size_t)7));
+                    } else {
+                        rg[2 * nr] = (uint32_t)a;
+                        rg[2 * nr + 1] = (uint32_t)(a + ((b - a + 7) & ~(size_t)7));
+                        ++nr;
+                    }
+                }
+            }
+            for (; nr < nrange; ++nr) rg[2 * nr] = rg[2 * nr + 1] = 0;
+            /* Whether a wall particle has fluid among its candidates (its pass is skipped if not:
+             * its sums would be exactly zero). The kinds do not change between searches. */
+            uint8_t wet = 0;
+            if (wall_like(&sim->ps, i))
+                for (int r = 0; r < nrange && !wet; ++r)
+                    for (size_t j = rg[2 * r]; j < rg[2 * r + 1] && j < n && !wet; ++j)
+                        wet = sim->ps.kind[j] == RY_KIND_FLUID;
+            w->wet[i] = wet;
+        }
+    }
+    w->rng_gen = sim->nl_generation;
+    return RY_OK;
+}
+
+void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
+    const ry_particles *ps = &sim->ps;
+    const ry_kernel *k = &sim->kernel;
+    fast_ctx c;
+    memset(&c, 0, sizeof c);
+    c.kind = ps->kind;
+    c.rng = w->rng;
+    c.fs = w->fpack_stride;
+    c.fk = (const float *)((const double *)w->fpack + 3 * c.fs);
+    for (int d = 0; d < 3; ++d) {
+        c.x[d] = (const double *)w->fpack + (size_t)d * c.fs;
+        c.v[d] = ps->f[RY_F_VX + (d < sim->dim ? d : 0)];
+        c.a[d] = ps->f[RY_F_AX + d];
+        c.g[d] = d < sim->dim ? sim->gravity[d] : 0.0;
+    }
+    c.rho = ps->f[RY_F_RHO];
+    c.drho = ps->f[RY_F_DRHO];
+    c.rho_ref = w->rho0m[0];
+    c.cont = w->density == DENS_CONTINUITY;
+    c.diff = w->diffusion != DIFF_NONE ? 2.0 * w->delta * k->h * w->c0 : 0.0;
+    c.fourtakas = w->diffusion == DIFF_FOURTAKAS;
+    c.rho0m = w->rho0m;
+    c.material = ps->material;
+    c.inv_c02 = 1.0 / (w->c0 * w->c0);
+    c.rad2 = (float)(sim->nl_radius * sim->nl_radius);
+    c.inv_h = (float)k->inv_h;
+    c.dnorm_h = (float)(k->dnorm / k->h);
+    c.h0 = (float)k->h;
+    c.eta2 = (float)(0.01 * k->h * k->h);
+    c.alpha = (float)w->alpha;
+    c.c0 = (float)w->c0;
+    c.beta = (float)w->beta;
+    c.rep_d = (float)w->rep_d;
+    c.rep_r02 = (float)(w->rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0);
+    static const fast_driver drivers[2][2] = {
+        {fast_2_RY_KERNEL_WENDLAND_C2, fast_3_RY_KERNEL_WENDLAND_C2},
+        {fast_2_RY_KERNEL_WENDLAND_C4, fast_3_RY_KERNEL_WENDLAND_C4}};
+    drivers[k->type == RY_KERNEL_WENDLAND_C4][sim->dim - 2](&c, ps->n, res);
+}
+
+/* Whether every material has the density and viscosity of the first, and the equation of
+ * state is Tait or linear (the cell-range loop's single-material passes). */
+int wc_uniform_materials(const ry_sim *sim, const wcsph *w) {
+    int same = w->eos != EOS_IDEAL_GAS;
+    for (int m = 1; m < sim->nmat; ++m)
+        same &= sim->mat[m].density == sim->mat[0].density &&
+                sim->mat[m].viscosity == sim->mat[0].viscosity;
+    return same;
+}
+
+/* The pressure of the fluid (equation of state) and the records of the particles other than
+ * walls (the wall pass writes the walls'), in one loop over contiguous arrays. */
+static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w);
+
+void wc_fpack_fluid(ry_sim *sim, const wcsph *w) {
+    if (wc_uniform_materials(sim, w)) {
+        fpack_fluid_one_rho0(sim, w);
+        return;
+    }
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n, fs = w->fpack_stride;
+    const int dim = sim->dim, laminar = w->laminar;
+    const double rho_ref = w->rho0m[0];
+    const uint8_t *restrict kind = ps->kind, *restrict matl = ps->material;
+    const double *restrict rho = ps->f[RY_F_RHO], *restrict e = ps->f[RY_F_E];
+    double *restrict p = ps->f[RY_F_P];
+    const double *restrict m = ps->f[RY_F_MASS];
+    const ry_material *mat = sim->mat;
+    double *restrict xp = w->fpack;
+    float *restrict fk = (float *)(xp + 3 * fs);
+    const double *x[3], *v[3];
+    ry_particles_coords(ps, x);
+    for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        for (int d = 0; d < dim; ++d) {
+            xp[(size_t)d * fs + i] = x[d][i];
+            /* walls: rewritten by the wall pass */
+            fk[(FK_U + d) * fs + i] = fk[(FK_UG + d) * fs + i] = (float)v[d][i];
+        }
+        if (kind[i] == RY_KIND_WALL || kind[i] == RY_KIND_INLET) {
+            /* Until the wall pass: inert, as the wall pass reads every candidate (masked). */
+            for (int k = FK_DRHO; k < FK_COUNT; ++k) fk[(size_t)k * fs + i] = 0.0f;
+            continue;
+        }
+        if (kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, matl[i], rho[i], e[i]);
+        const double inv_rho = 1.0 / rho[i];
+        fk[FK_DRHO * fs + i] = (float)(rho[i] - rho_ref);
+        fk[FK_PRHO2 * fs + i] = (float)(p[i] * inv_rho * inv_rho);
+        fk[FK_VOL * fs + i] = (float)(m[i] * inv_rho);
+        fk[FK_MU * fs + i] = laminar ? (float)(rho[i] * mat[matl[i]].viscosity) : 0.0f;
+        fk[FK_MASS * fs + i] = (float)m[i];
+        fk[FK_FLUID * fs + i] = kind[i] == RY_KIND_FLUID || kind[i] == RY_KIND_OUTLET;
+        fk[FK_VISC * fs + i] = 1.0f; /* not a wall */
+        fk[FK_P * fs + i] = (float)p[i];
+    }
+}
+
+/* wc_fpack_fluid for one reference density and the Tait or linear equation of state: one pass
+ * per array, so that each vectorises; walls get inert records until the wall pass. */
+static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n, fs = w->fpack_stride;
+    const int dim = sim->dim;
+    const uint8_t *restrict kind = ps->kind;
+    const double *restrict rho = ps->f[RY_F_RHO], *restrict m = ps->f[RY_F_MASS];
+    double *restrict p = ps->f[RY_F_P];
+    double *restrict xp = w->fpack;
+    float *restrict fk = (float *)(xp + 3 * fs);
+    const double rho0 = w->rho0m[0], B = w->Bm[0], pb = w->p_background;
+    const double c02 = w->c0 * w->c0;
+    const int tait7 = w->eos == EOS_TAIT && w->gamma == 7.0, linear = w->eos == EOS_LINEAR;
+    const double nu = w->laminar ? sim->mat[0].viscosity : 0.0;
+#pragma omp parallel
+    {
+        for (int d = 0; d < dim; ++d) {
+            const double *restrict x = ps->f[RY_F_X + d], *restrict v = ps->f[RY_F_VX + d];
+            double *restrict xd = xp + (size_t)d * fs;
+            float *restrict u = fk + (FK_U + d) * fs, *restrict ug = fk + (FK_UG + d) * fs;
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i) {
+                xd[i] = x[i];
+                u[i] = ug[i] = (float)v[i]; /* walls: rewritten by the wall pass */
+            }
+        }
+        if (tait7 || linear) {
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i) {
+                const double q = rho[i] / rho0, q2 = q * q;
+                const double pt =
+                    tait7 ? B * (q2 * q2 * q2 * q - 1.0) + pb : c02 * (rho[i] - rho0) + pb;
+                p[i] = kind[i] == RY_KIND_FLUID ? pt : p[i];
+            }
+        } else {
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i)
+                if (kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, 0, rho[i], 0.0);
+        }
+        float *restrict fdr = fk + FK_DRHO * fs, *restrict fpr = fk + FK_PRHO2 * fs;
+        float *restrict fvol = fk + FK_VOL * fs, *restrict fmu = fk + FK_MU * fs;
+        float *restrict fm = fk + FK_MASS * fs, *restrict ffl = fk + FK_FLUID * fs;
+        float *restrict fvi = fk + FK_VISC * fs, *restrict fp = fk + FK_P * fs;
+#pragma omp for schedule(static) nowait
+        for (size_t i = 0; i < n; ++i) {
+            /* Walls stay inert until the wall pass (it reads every candidate, masked). */
+            const float on = kind[i] == RY_KIND_WALL ? 0.0f : 1.0f;
+            const double inv_rho = 1.0 / rho[i];
+            fdr[i] = on * (float)(rho[i] - rho0);
+            fpr[i] = on * (float)(p[i] * inv_rho * inv_rho);
+            fvol[i] = on * (float)(m[i] * inv_rho);
+            fmu[i] = on * (float)(rho[i] * nu);
+            fm[i] = on * (float)m[i];
+            ffl[i] = kind[i] == RY_KIND_FLUID ? 1.0f : 0.0f;
+            fvi[i] = on;
+            fp[i] = on * (float)p[i];
+        }
+    }
+}

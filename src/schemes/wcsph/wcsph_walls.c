@@ -1,0 +1,197 @@
+/* The wall pass of WCSPH: dummy wall particles take a pressure extrapolated from the fluid,
+ * a density from the equation of state and, for no-slip walls, the ghost velocity 2 v_w - v~
+ * (Adami, Hu & Adams (2012), J. Comput. Phys. 231: 7057, eq. 22-23 and 27-28). Sums over the
+ * neighbour list (double precision) or over the candidate ranges of the cell-range loop (single
+ * precision, which then also writes the walls' records). */
+#include <math.h>
+
+#include "schemes/wcsph/wcsph_internal.h"
+
+/* Wall particles: pressure, density and ghost velocity extrapolated from the fluid (Adami et
+ * al. 2012, eq. 22-23 and 27-28). The sums of wall particle i over its fluid neighbours j, from
+ * the list (rows) or from the candidate ranges of the cell-range loop. */
+typedef struct wall_sums {
+    double sw, sp, srx, sv[3];
+} wall_sums;
+
+static inline __attribute__((always_inline)) void wall_sums_list(const ry_sim *sim, size_t i,
+                                                                 wall_sums *s) {
+    const ry_particles *ps = &sim->ps;
+    const ry_kernel *k = &sim->kernel;
+    const int dim = sim->dim;
+    const double *p = ps->f[RY_F_P], *rho = ps->f[RY_F_RHO], *g = sim->gravity;
+    const double rad2 = k->radius * k->radius;
+    const int periodic = is_periodic(sim);
+    for (size_t q = sim->nl.offset[i]; q < sim->nl.offset[i + 1]; ++q) {
+        uint32_t j = sim->nl.j[q];
+        if (ps->kind[j] != RY_KIND_FLUID && ps->kind[j] != RY_KIND_OUTLET) continue;
+        double dx[3] = {0, 0, 0}, r2 = 0;
+        for (int d = 0; d < dim; ++d) dx[d] = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
+        if (periodic) ry_box_min_image(&sim->box, dx);
+        for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
+        if (r2 >= rad2) continue;
+        double wij = ry_kernel_w(k, sqrt(r2));
+        double gr = 0;
+        for (int d = 0; d < dim; ++d) gr += g[d] * dx[d];
+        s->sw += wij;
+        s->sp += p[j] * wij;
+        s->srx += rho[j] * gr * wij;
+        for (int d = 0; d < dim; ++d) s->sv[d] += ps->f[RY_F_VX + d][j] * wij;
+    }
+}
+
+/* Pressure, density and ghost velocity of wall (and inlet) particle i from its sums. */
+static inline void wall_set(ry_sim *sim, const wcsph *w, size_t i, const wall_sums *s) {
+    ry_particles *ps = &sim->ps;
+    const int dim = sim->dim, inlet = ps->kind[i] == RY_KIND_INLET;
+    const int mat = ps->material[i];
+    if (s->sw > 0) {
+        const double pw = (s->sp + s->srx) / s->sw;
+        ps->f[RY_F_P][i] = pw;
+        ps->f[RY_F_RHO][i] = eos_density(w, mat, pw);
+        for (int d = 0; d < dim; ++d)
+            ps->f[w->f_vg[d]][i] =
+                inlet ? ps->f[RY_F_VX + d][i] : 2.0 * ps->f[RY_F_VX + d][i] - s->sv[d] / s->sw;
+    } else {
+        ps->f[RY_F_P][i] = w->p_background;
+        ps->f[RY_F_RHO][i] = w->rho0m[mat];
+        for (int d = 0; d < dim; ++d) ps->f[w->f_vg[d]][i] = ps->f[RY_F_VX + d][i];
+    }
+}
+
+void wc_wall_pass(ry_sim *sim, const wcsph *w) {
+    const size_t n = sim->ps.n;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        if (!wall_like(&sim->ps, i)) continue;
+        wall_sums s = {0, 0, 0, {0, 0, 0}};
+        wall_sums_list(sim, i, &s);
+        wall_set(sim, w, i, &s);
+    }
+}
+
+/* The walls' records after the wall pass (fpack_one for each wall), for uniform materials:
+ * one pass per array, the other particles' entries kept. */
+static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n, fs = w->fpack_stride;
+    const int dim = sim->dim;
+    const uint8_t *restrict kind = ps->kind;
+    const double *restrict rho = ps->f[RY_F_RHO], *restrict m = ps->f[RY_F_MASS];
+    const double *restrict p = ps->f[RY_F_P];
+    float *restrict fk = (float *)((double *)w->fpack + 3 * fs);
+    const double rho0 = w->rho0m[0], nu = w->laminar ? sim->mat[0].viscosity : 0.0;
+    const float visc = w->wall == WALL_NO_SLIP ? 1.0f : 0.0f;
+#pragma omp parallel
+    {
+        for (int d = 0; d < dim; ++d) {
+            const double *restrict vg = ps->f[w->f_vg[d]];
+            float *restrict ug = fk + (FK_UG + d) * fs;
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; ++i) ug[i] = kind[i] == RY_KIND_WALL ? (float)vg[i] : ug[i];
+        }
+        float *restrict fdr = fk + FK_DRHO * fs, *restrict fpr = fk + FK_PRHO2 * fs;
+        float *restrict fvol = fk + FK_VOL * fs, *restrict fmu = fk + FK_MU * fs;
+        float *restrict fm = fk + FK_MASS * fs, *restrict fvi = fk + FK_VISC * fs;
+        float *restrict fp = fk + FK_P * fs;
+#pragma omp for schedule(static) nowait
+        for (size_t i = 0; i < n; ++i) {
+            const int wall = kind[i] == RY_KIND_WALL;
+            const double inv_rho = 1.0 / rho[i];
+            fdr[i] = wall ? (float)(rho[i] - rho0) : fdr[i];
+            fpr[i] = wall ? (float)(p[i] * inv_rho * inv_rho) : fpr[i];
+            fvol[i] = wall ? (float)(m[i] * inv_rho) : fvol[i];
+            fmu[i] = wall ? (float)(rho[i] * nu) : fmu[i];
+            fm[i] = wall ? (float)m[i] : fm[i];
+            fvi[i] = wall ? visc : fvi[i];
+            fp[i] = wall ? (float)p[i] : fp[i];
+        }
+    }
+}
+
+/* W(q) / norm of the Wendland kernels (q < 2 is masked by the caller). */
+static inline v8f shape_v8(const ry_kernel_type kt, v8f q) {
+    const v8f s = 0.5f * q, t = 1.0f - s, t2 = t * t;
+    return kt == RY_KERNEL_WENDLAND_C2 ? t2 * t2 * (1.0f + 4.0f * s)
+                                       : t2 * t2 * t2 * (1.0f + s * (6.0f + s * (35.0f / 3.0f)));
+}
+
+/* The wall pass of the cell-range loop: the sums of wall particle i over the fluid among its
+ * candidates, in single precision from the records of wc_prepare_pairs (whose wall entries are
+ * then rewritten). */
+static inline __attribute__((always_inline)) void
+wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
+                 const ry_kernel_type kt, wall_sums *s) {
+    const ry_kernel *k = &sim->kernel;
+    const int nrange = dim > 2 ? 9 : 3;
+    const uint32_t *restrict rg = w->rng + i * 2 * (size_t)nrange;
+    const size_t fs = w->fpack_stride;
+    const double *restrict x0 = w->fpack, *restrict x1 = x0 + fs, *restrict x2 = x0 + 2 * fs;
+    const float *restrict fk = (const float *)(x0 + 3 * fs);
+    const double xi = x0[i], yi = x1[i], zi = dim > 2 ? x2[i] : 0.0;
+    const float rad2 = (float)(k->radius * k->radius), inv_h = (float)k->inv_h;
+    const float gx = (float)sim->gravity[0], gy = (float)sim->gravity[1];
+    const float gz = dim > 2 ? (float)sim->gravity[2] : 0.0f;
+    const float rho_ref = (float)w->rho0m[0];
+    const v8f zero = {0};
+    v8f sw = zero, sp = zero, srx = zero, su = zero, sv = zero, sz = zero;
+    for (int r = 0; r < nrange; ++r) {
+        for (size_t j = rg[2 * r]; j < rg[2 * r + 1]; j += 8) {
+            const v8f dx = v8_sep(xi, x0 + j), dy = v8_sep(yi, x1 + j);
+            const v8f dz = dim > 2 ? v8_sep(zi, x2 + j) : zero;
+            v8f r2 = dx * dx + dy * dy, gr = gx * dx + gy * dy;
+            if (dim > 2) {
+                r2 += dz * dz;
+                gr += gz * dz;
+            }
+            const v8i on = (r2 < rad2) & (v8_load(fk + FK_FLUID * fs + j) != 0.0f);
+            const v8f wij = v8_and(on, shape_v8(kt, v8_sqrt(r2) * inv_h));
+            sw += wij;
+            sp += v8_load(fk + FK_P * fs + j) * wij;
+            srx += (rho_ref + v8_load(fk + FK_DRHO * fs + j)) * gr * wij;
+            su += v8_load(fk + FK_U * fs + j) * wij;
+            sv += v8_load(fk + FK_V * fs + j) * wij;
+            if (dim > 2) sz += v8_load(fk + FK_W * fs + j) * wij;
+        }
+    }
+    /* The kernel's normalisation cancels in every ratio but is kept for sw > 0 semantics. */
+    const double norm = k->norm;
+    s->sw = norm * v8_sum(sw);
+    s->sp = norm * v8_sum(sp);
+    s->srx = norm * v8_sum(srx);
+    s->sv[0] = norm * v8_sum(su);
+    s->sv[1] = norm * v8_sum(sv);
+    s->sv[2] = norm * v8_sum(sz);
+}
+
+#define RY_WALL_RANGES_(DIM, KT)                                                                   \
+    static void wall_ranges_##DIM##_##KT(ry_sim *sim, const wcsph *w) {                            \
+        const size_t n = sim->ps.n;                                                                \
+        _Pragma("omp parallel for schedule(static)") for (size_t i = 0; i < n; ++i) {              \
+            if (!wall_like(&sim->ps, i)) continue;                                                 \
+            wall_sums s = {0, 0, 0, {0, 0, 0}};                                                    \
+            if (w->wet[i]) wall_sums_ranges(sim, w, i, DIM, KT, &s);                               \
+            wall_set(sim, w, i, &s);                                                               \
+        }                                                                                          \
+        /* The walls' records, once no thread reads them any more. */                              \
+        if (wc_uniform_materials(sim, w)) {                                                        \
+            fpack_walls_one_rho0(sim, w);                                                          \
+            return;                                                                                \
+        }                                                                                          \
+        _Pragma("omp parallel for schedule(static)") for (size_t i = 0; i < n; ++i) {              \
+            if (wall_like(&sim->ps, i))                                                            \
+                fpack_one(sim, w, i, pack_mu(sim, w, i), pack_visc(sim, w, i));                    \
+        }                                                                                          \
+    }
+RY_WALL_RANGES_(2, RY_KERNEL_WENDLAND_C2)
+RY_WALL_RANGES_(3, RY_KERNEL_WENDLAND_C2)
+RY_WALL_RANGES_(2, RY_KERNEL_WENDLAND_C4)
+RY_WALL_RANGES_(3, RY_KERNEL_WENDLAND_C4)
+#undef RY_WALL_RANGES_
+
+void wc_fast_wall_pass(ry_sim *sim, const wcsph *w) {
+    static void (*const drivers[2][2])(ry_sim *, const wcsph *) = {
+        {wall_ranges_2_RY_KERNEL_WENDLAND_C2, wall_ranges_3_RY_KERNEL_WENDLAND_C2},
+        {wall_ranges_2_RY_KERNEL_WENDLAND_C4, wall_ranges_3_RY_KERNEL_WENDLAND_C4}};
+    drivers[sim->kernel.type == RY_KERNEL_WENDLAND_C4][sim->dim - 2](sim, w);
+}
