@@ -14,6 +14,12 @@ int ry_cli_validate(int argc, char **argv);
 ry_status ry_cli_add_series(ry_plot *p, int panel, const char *label, const ry_table *t,
                             const char *cx, double sx, const char *cy, double sy,
                             ry_plot_style style, ry_error *err);
+/* The WCSPH validations (validate_wcsph.c): dam break against Martin & Moyce, the lid-driven
+ * cavity against Ghia et al., the channel with in- and outflow; each adds its failed checks to
+ * *failures. */
+int ry_cli_validate_dam_break(const char *root, const char *out, int quick, int *failures);
+int ry_cli_validate_cavity(const char *root, const char *out, int quick, int *failures);
+int ry_cli_validate_channel(const char *root, const char *out, int quick, int *failures);
 /* The cantilever validation (validate_solid.c); adds its failed checks to *failures. */
 int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int *failures);
 /* The oscillating plate and the filament buckling (validate_solid.c). */
@@ -25,6 +31,8 @@ int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failu
 /* Sessile drops only (part of ry_cli_validate_mps): CSF with a contact angle and two liquids
  * with an angle per liquid. */
 int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *failures);
+/* Prints a validation's error and counts a failure; returns 1. */
+int ry_cli_fail(int *failures, const ry_error *err);
 /* Prints a validation check's line (PASS or FAIL) and counts a failure. */
 void ry_cli_check(const char *what, int ok, int *failures);
 /* Writes plot p as out/name (PNG) and prints where; a failure is printed and counted. */
@@ -57,7 +65,7 @@ int ry_cli_validate_rt(const char *root, const char *out, int quick, int *failur
 /* Water and air in motion (IISPH with a light phase): the dam break under air and a standing
  * wave (part of ry_cli_validate_iisph). */
 int ry_cli_validate_air(const char *root, const char *out, int quick, int *failures);
-/* The eye case in segments with slice pictures (validate_iisph.c). */
+/* The eye case in segments with slice pictures (validate_eye.c). */
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_eye_clinical(const char *root, const char *out, int quick, int *failures);

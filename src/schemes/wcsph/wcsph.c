@@ -236,14 +236,6 @@ static void wcsph_free(void *state) {
     free(w);
 }
 
-/* The scheme's buffers, for sim->scheme_bytes. */
-size_t wc_bytes(const wcsph *w) {
-    const size_t nr = w->rng_cap * (2 * (size_t)w->nrange * sizeof(uint32_t) + 1);
-    return w->pack_cap * PK_STRIDE(3) * sizeof(double) +
-           w->scratch_cap * (SC_COUNT + 1) * sizeof(double) +
-           w->fpack_cap * (3 * sizeof(double) + FK_COUNT * sizeof(float)) + nr;
-}
-
 static int wcsph_vars(void *state, ry_state_var *v, int max) {
     wcsph *w = state;
     const ry_state_var all[] = {{"vmax", &w->vmax, NULL, NULL},

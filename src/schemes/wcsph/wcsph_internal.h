@@ -277,7 +277,7 @@ static inline double v8_sum(v8f a) {
 #define RY_DRIVER_ROW_(P, KT)                                                                      \
     [KT] = {{P##_2_##KT##_0, P##_2_##KT##_1}, {P##_3_##KT##_0, P##_3_##KT##_1}}
 
-/* wcsph.c */
+/* wcsph_step.c: the scheme's buffers, for sim->scheme_bytes */
 size_t wc_bytes(const wcsph *w);
 
 /* wcsph_walls.c: pressure, density and ghost velocity of the walls (Adami et al. 2012), from the

@@ -158,6 +158,14 @@ static ry_status st_forces(ry_sim *sim, wcsph *w, ry_error *err) {
     return RY_OK;
 }
 
+/* The scheme's buffers, for sim->scheme_bytes. */
+size_t wc_bytes(const wcsph *w) {
+    const size_t nr = w->rng_cap * (2 * (size_t)w->nrange * sizeof(uint32_t) + 1);
+    return w->pack_cap * PK_STRIDE(3) * sizeof(double) +
+           w->scratch_cap * (SC_COUNT + 1) * sizeof(double) +
+           w->fpack_cap * (3 * sizeof(double) + FK_COUNT * sizeof(float)) + nr;
+}
+
 /* Evaluates all rates at the current (predicted) state. */
 static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     ry_particles *ps = &sim->ps;

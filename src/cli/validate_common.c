@@ -1,0 +1,82 @@
+/* What the validations share: series into plots, the PASS/FAIL lines, plots written, slices of
+ * 3D runs. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cli/cli.h"
+
+ry_status ry_cli_add_series(ry_plot *p, int panel, const char *label, const ry_table *t,
+                            const char *cx, double sx, const char *cy, double sy,
+                            ry_plot_style style, ry_error *err) {
+    int ix = ry_table_col(t, cx), iy = ry_table_col(t, cy);
+    RY_CHECK(err, ix >= 0 && iy >= 0, RY_ERR_INPUT, "missing column %s or %s", cx, cy);
+    double *x = ry_table_column(t, ix), *y = ry_table_column(t, iy);
+    ry_status st = RY_OK;
+    if (!x || !y) st = ry_error_set(err, RY_ERR_NOMEM, "out of memory");
+    for (size_t r = 0; r < t->nrows && st == RY_OK; ++r) {
+        x[r] *= sx;
+        y[r] *= sy;
+    }
+    if (st == RY_OK) st = ry_plot_series(p, panel, label, t->nrows, x, y, style, err);
+    free(x);
+    free(y);
+    return st;
+}
+
+void ry_cli_slice_markers(ry_plot *p, int panel, const ry_sim *sim, double half,
+                          const char *const label[3], int legend) {
+    ry_error err;
+    const ry_particles *ps = &sim->ps;
+    double *x = malloc(ps->n * sizeof *x), *z = malloc(ps->n * sizeof *z);
+    const int color[3] = {7, 0, 1};
+    for (int set = 0; x && z && set < 3; ++set) {
+        size_t m = 0;
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (fabs(ps->f[RY_F_Y][i]) > half) continue;
+            const int k = ps->kind[i];
+            const int which =
+                k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
+            if (which != set) continue;
+            x[m] = 1e3 * ps->f[RY_F_X][i];
+            z[m++] = 1e3 * ps->f[RY_F_Z][i];
+        }
+        if (m == 0) continue;
+        ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
+        st.color = color[set];
+        st.marker_size = 6;
+        ry_plot_series(p, panel, legend ? label[set] : NULL, m, x, z, st, &err);
+    }
+    free(x);
+    free(z);
+}
+
+double *ry_cli_scaled_column(const ry_table *s, const char *name, double k) {
+    const int c = ry_table_col(s, name);
+    double *v = c >= 0 ? ry_table_column(s, c) : NULL;
+    for (size_t r = 0; v && r < s->nrows; ++r) v[r] *= k;
+    return v;
+}
+
+void ry_cli_check(const char *what, int ok, int *failures) {
+    printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
+    if (!ok) ++*failures;
+}
+
+void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failures) {
+    ry_error err = {0};
+    char png[4096];
+    snprintf(png, sizeof png, "%s/%s", out, name);
+    if (ry_plot_write_png(p, png, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        ++*failures;
+    } else {
+        printf("  plot: %s\n", png);
+    }
+}
+
+int ry_cli_fail(int *failures, const ry_error *err) {
+    fprintf(stderr, "ryushi: validate: %s\n", err->msg);
+    ++*failures;
+    return 1;
+}
