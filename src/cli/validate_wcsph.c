@@ -55,7 +55,6 @@ static ry_status run_series(vctx *v, const char *case_file, const char *sub, int
     return ry_table_read(series, spath, err);
 }
 
-
 static int dam_break(vctx *v) {
     ry_error err = {0};
     char ref_path[4096];
