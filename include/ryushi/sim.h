@@ -35,6 +35,11 @@ typedef struct ry_material {
     ry_rheology rheo; /* Newtonian unless materials[i].rheology says otherwise */
 } ry_material;
 
+/* What a scheme can do (ry_scheme_type.caps). */
+enum {
+    RY_SCHEME_RHEOLOGY = 1 << 0, /* carries non-Newtonian materials (materials[i].rheology) */
+};
+
 /* A scheme: how particles advance in time. */
 typedef struct ry_scheme_type {
     const char *name;
@@ -56,6 +61,7 @@ typedef struct ry_scheme_type {
      * "pressure_iterations"); returns 0 when the scheme keeps no statistic of that name.
      * docs/ARCHITECTURE.md lists the names in use. */
     int (*stat)(const ry_sim *sim, const void *state, const char *name, double *value);
+    unsigned caps; /* RY_SCHEME_* flags */
 } ry_scheme_type;
 
 /* Memory per particle of a set-up simulation: particle fields, cells, neighbour list and the

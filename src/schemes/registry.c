@@ -33,11 +33,13 @@ static void static_free(void *state) {
 }
 
 static const ry_scheme_type scheme_static = {
-    "static",    "particles do not move (geometry set-up and output only)",
-    static_init, static_dt,
-    static_step, static_free,
-    NULL,        NULL,
-    NULL};
+    .name = "static",
+    .summary = "particles do not move (geometry set-up and output only)",
+    .init = static_init,
+    .stable_dt = static_dt,
+    .step = static_step,
+    .free = static_free,
+    .caps = 0};
 
 static const ry_scheme_type *const all_schemes[] = {
     &ry_scheme_wcsph, &ry_scheme_iisph, &ry_scheme_mps, &ry_scheme_solid, &scheme_static, NULL};

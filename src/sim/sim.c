@@ -226,17 +226,20 @@ static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {
     free(names);
     RY_TRY(st);
     sim->scheme = all[which];
-    /* Non-Newtonian materials are carried by the fluid schemes (docs/rheology.md). */
-    const char *name = sim->scheme->name;
-    const int fluid = !strcmp(name, "mps") || !strcmp(name, "wcsph") || !strcmp(name, "iisph");
-    for (int m = 0; m < sim->nmat && !fluid; ++m) {
-        char k[96], where[256];
+    /* Non-Newtonian materials need a scheme that carries them (docs/rheology.md). */
+    const int rheology = (sim->scheme->caps & RY_SCHEME_RHEOLOGY) != 0;
+    for (int m = 0; m < sim->nmat && !rheology; ++m) {
+        if (sim->mat[m].rheo.model == RY_RHEO_NEWTONIAN) continue;
+        char k[96], where[256], able[128] = "";
+        for (int i = 0; i < count; ++i)
+            if (all[i]->caps & RY_SCHEME_RHEOLOGY)
+                snprintf(able + strlen(able), sizeof able - strlen(able), "%s%s",
+                         able[0] ? ", " : "", all[i]->name);
         snprintf(k, sizeof k, "materials[%d].rheology.model", m);
-        RY_CHECK(err, sim->mat[m].rheo.model == RY_RHEO_NEWTONIAN, RY_ERR_INPUT,
-                 "%s: key '%s': %s is available with schemes mps, wcsph and iisph (this case uses "
-                 "%s)",
-                 ry_case_where(c, k, where, sizeof where), k,
-                 ry_rheology_names[sim->mat[m].rheo.model], sim->scheme->name);
+        return ry_error_set(err, RY_ERR_INPUT,
+                            "%s: key '%s': %s is available with schemes %s (this case uses %s)",
+                            ry_case_where(c, k, where, sizeof where), k,
+                            ry_rheology_names[sim->mat[m].rheo.model], able, sim->scheme->name);
     }
     return sim->scheme->init(sim, c, &sim->scheme_state, err);
 }

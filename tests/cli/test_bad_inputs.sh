@@ -65,7 +65,7 @@ case_ mps_rate_outlet 2 ":7: key 'open_boundaries[0].type': scheme mps takes no 
 case_ inlet_flow_rate_direction 2 ":8: key 'open_boundaries[0].direction': the flow must be along one axis (a unit vector such as [0, 0, -1])"
 case_ rheology_no_bound 2 ":6: key 'materials[0].rheology.viscosity_max': required key is missing"
 case_ rheology_with_viscosity 2 ":6: key 'materials[0].viscosity': not used with rheology.model carreau (the viscosity follows from the shear rate)"
-case_ rheology_solid 2 ":8: key 'materials[0].rheology.model': oldroyd_b is available with schemes mps, wcsph and iisph (this case uses solid)"
+case_ rheology_solid 2 ":8: key 'materials[0].rheology.model': oldroyd_b is available with schemes wcsph, iisph, mps (this case uses solid)"
 case_ rheology_iisph_projected 2 ": key 'scheme.viscous_form': material 'gel' (power_law) needs morris"
 case_ rheology_wcsph_inviscid 2 ":12: key 'scheme.laminar_viscosity': a non-Newtonian material needs it true"
 case_ rheology_giesekus_mobility 2 ":11: key 'materials[0].rheology.mobility': expected a number in [0, 0.5], got '0.7'"

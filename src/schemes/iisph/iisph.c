@@ -363,13 +363,14 @@ static int iisph_stat(const ry_sim *sim, const void *state, const char *name, do
 }
 
 const ry_scheme_type ry_scheme_iisph = {
-    "iisph",
-    "implicit incompressible SPH (Ihmsen et al. 2014; number-density two-phase form, colour-field "
-    "interfacial and free-surface tension)",
-    iisph_init,
-    iisph_dt,
-    iisph_step,
-    iisph_free,
-    iisph_vars,
-    iisph_report,
-    iisph_stat};
+    .name = "iisph",
+    .summary = "implicit incompressible SPH (Ihmsen et al. 2014; number-density two-phase form, "
+               "colour-field interfacial and free-surface tension)",
+    .init = iisph_init,
+    .stable_dt = iisph_dt,
+    .step = iisph_step,
+    .free = iisph_free,
+    .state_vars = iisph_vars,
+    .report = iisph_report,
+    .stat = iisph_stat,
+    .caps = RY_SCHEME_RHEOLOGY};

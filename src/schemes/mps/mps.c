@@ -380,8 +380,12 @@ static int mps_stat(const ry_sim *sim, const void *state, const char *name, doub
 }
 
 const ry_scheme_type ry_scheme_mps = {
-    "mps",    "moving particle semi-implicit (Tamai weight, Iribe gradient, PCG pressure)",
-    mps_init, mps_dt,
-    mps_step, mps_free,
-    mps_vars, NULL,
-    mps_stat};
+    .name = "mps",
+    .summary = "moving particle semi-implicit (Tamai weight, Iribe gradient, PCG pressure)",
+    .init = mps_init,
+    .stable_dt = mps_dt,
+    .step = mps_step,
+    .free = mps_free,
+    .state_vars = mps_vars,
+    .stat = mps_stat,
+    .caps = RY_SCHEME_RHEOLOGY};

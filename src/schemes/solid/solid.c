@@ -432,13 +432,13 @@ static int solid_stat(const ry_sim *sim, const void *state, const char *name, do
 }
 
 const ry_scheme_type ry_scheme_solid = {
-    "solid",
-    "elastic solid: total-Lagrangian SPH with corrected kernel gradients, or updated-Lagrangian "
-    "with Jaumann-rate stress and artificial stress (seed 000)",
-    solid_init,
-    solid_dt,
-    solid_step,
-    solid_free,
-    solid_vars,
-    NULL,
-    solid_stat};
+    .name = "solid",
+    .summary = "elastic solid: total-Lagrangian SPH with corrected kernel gradients, or "
+               "updated-Lagrangian with Jaumann-rate stress and artificial stress (seed 000)",
+    .init = solid_init,
+    .stable_dt = solid_dt,
+    .step = solid_step,
+    .free = solid_free,
+    .state_vars = solid_vars,
+    .stat = solid_stat,
+    .caps = 0};

@@ -250,13 +250,12 @@ static int wcsph_vars(void *state, ry_state_var *v, int max) {
 }
 
 const ry_scheme_type ry_scheme_wcsph = {
-    "wcsph",
-    "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog, "
-    "free-surface tension)",
-    wcsph_init,
-    wc_dt,
-    wc_step,
-    wcsph_free,
-    wcsph_vars,
-    NULL,
-    NULL};
+    .name = "wcsph",
+    .summary = "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog, "
+               "free-surface tension)",
+    .init = wcsph_init,
+    .stable_dt = wc_dt,
+    .step = wc_step,
+    .free = wcsph_free,
+    .state_vars = wcsph_vars,
+    .caps = RY_SCHEME_RHEOLOGY};
