@@ -41,6 +41,26 @@ enum {
 };
 
 /* A scheme: how particles advance in time. */
+/* What a scheme needs of the core for the case at hand (ry_scheme_type.needs); the core starts
+ * from ry_scheme_needs_default and keeps the result in its own fields. */
+typedef struct ry_scheme_needs {
+    double skin;     /* default Verlet skin, a fraction of the search radius (the case's
+                        neighbors.skin overrides it); 0: the core's default, 0.15 */
+    int sort_always; /* reorder at every search (by cell, and by x within each cell), so that
+                        the particles of each cell are consecutive */
+    int cells_only;  /* the cells of the search only, no neighbour list */
+    int keep_order;  /* never reorder the particles (per-particle arrays indexed like them) */
+    int open_sink;   /* outlets are sinks: fluid that crosses an outlet's downstream face inside
+                        its cross-section is removed, and no outlet buffer particles are made */
+    int halo_depth;  /* distributed runs: search radii of halo (2: a value a halo particle
+                        computes from its own neighbours is right where an owned particle reads
+                        it; 1 for a scheme that synchronises every such value) */
+    int dd_x[3];     /* distributed runs: the fields of the coordinates the decomposition
+                        follows (the positions, or a scheme's reference positions) */
+    double max_speed, rho_min, rho_max; /* the guard's defaults (case section `guard`
+                                           overrides them; 0: no limit) */
+} ry_scheme_needs;
+
 typedef struct ry_scheme_type {
     const char *name;
     const char *summary;
@@ -61,6 +81,12 @@ typedef struct ry_scheme_type {
      * "pressure_iterations"); returns 0 when the scheme keeps no statistic of that name.
      * docs/ARCHITECTURE.md lists the names in use. */
     int (*stat)(const ry_sim *sim, const void *state, const char *name, double *value);
+    /* Optional: what the scheme needs of the core for this case (called once, after init; the
+     * defaults of ry_scheme_needs_default where absent). */
+    void (*needs)(const ry_sim *sim, const void *state, ry_scheme_needs *needs);
+    /* Optional: bytes of the buffers the scheme holds besides particle fields (for the memory
+     * figures of `ryushi bench`). */
+    size_t (*bytes)(const void *state);
     unsigned caps; /* RY_SCHEME_* flags */
 } ry_scheme_type;
 
@@ -189,8 +215,8 @@ struct ry_sim {
     double cfl;    /* Courant number for the scheme's time-step limits */
     double dt_max; /* upper bound on dt (0: none) */
     long step, max_steps;
-    int finished; /* set by a scheme when the run has reached its goal (e.g. a static solution
-                     converged to its residual): the time loop ends after that step */
+    int finished; /* the run has reached its goal (ry_sim_finish, or time.stop_when): the time
+                     loop ends after this step */
 
     /* neighbour search */
     ry_cell_list cells;
@@ -201,9 +227,8 @@ struct ry_sim {
                            radius (1 + skin) and is rebuilt when a particle has moved more
                            than half the skin since the last build */
     int reorder_every;  /* reorder particles along cells every so many builds (0: never) */
-    int sort_always;    /* set by a scheme: reorder at every build (by cell, and by x within
-                           each cell), so that the particles of each cell are consecutive */
-    int cells_only;     /* set by a scheme: it needs the cells only, not the list `nl` */
+    int sort_always;    /* the scheme's need (ry_scheme_needs.sort_always) */
+    int cells_only;     /* the scheme's need: the cells only, not the list `nl` */
     long searches;      /* list builds so far */
     long nl_edits;      /* lists brought up to date after in- and outflow (ry_sim_list_edit) */
     long nl_generation; /* list and cell builds in this process (restarts included), for
@@ -212,16 +237,13 @@ struct ry_sim {
     int f_xref;         /* field: positions at the last build (x, y, z consecutive ids) */
     int nl_restore;     /* after a restart: rebuild the list from the positions at the last
                            build (xref), without reordering, so that it is the same list */
-    int drift_known;    /* set by a scheme whose drift loop also measured drift2, the largest
-                           squared displacement since the last build; the next
+    int drift_known;    /* drift2 was measured by the scheme (ry_sim_drift_measured); the next
                            ry_sim_neighbors uses it instead of measuring, and clears this */
     double drift2;
 
     /* scheme */
     const ry_scheme_type *scheme;
     void *scheme_state;
-    size_t scheme_bytes; /* buffers the scheme holds besides particle fields (it keeps this up
-                            to date; for the memory figures of `ryushi bench`) */
 
     /* measurements */
     int nprobes;
@@ -256,17 +278,15 @@ struct ry_sim {
     /* open boundaries */
     int nopen;
     ry_open_boundary *open;
-    int open_sink; /* set by a scheme whose outlets are sinks (MPS): fluid that crosses an
-                      outlet's downstream face inside its cross-section is removed, and no
-                      outlet buffer particles are made; the free surface this leaves holds
-                      the pressure at 0 */
+    int open_sink; /* the scheme's need (ry_scheme_needs.open_sink; MPS): the free surface
+                      an outlet sink leaves holds the pressure at 0 */
 
     /* reliability */
     ry_guard guard;
     ry_ckpt_policy ckpt;
-    int checked; /* set by a scheme whose last loop of a step also made the guard check
-                    (src/core/guard_check.h), with the tallies below; the run loop then gives
-                    the verdict without another pass, and clears this */
+    int checked; /* the scheme's last loop of this step also made the guard check
+                    (src/core/guard_check.h, ry_sim_checked), with the tallies below; the run
+                    loop then gives the verdict without another pass, and clears this */
     size_t check_bad, check_fluid, check_outside;
     void *snapshot; /* the last good state (ry_sim_snapshot_*) */
 
@@ -274,11 +294,8 @@ struct ry_sim {
     const ry_par_ops *par;
     void *par_state;
     const uint8_t *halo; /* halo[i]: particle i is a halo copy (see ry_par_ops) */
-    int dd_x[3];         /* fields of the coordinates the decomposition follows: the
-                            positions, or a scheme's reference positions */
-    int halo_depth;      /* search radii of halo (2, the default: a value a halo particle
-                            computes from its own neighbours is right where an owned particle
-                            reads it; 1 for a scheme that synchronises every such value) */
+    int dd_x[3];         /* the scheme's needs (ry_scheme_needs.dd_x, .halo_depth) */
+    int halo_depth;
 };
 
 /* Whether particle i is a halo copy of another rank's particle (never in a serial run). */
@@ -303,6 +320,18 @@ static inline double ry_sim_separation(const ry_sim *sim, size_t i, size_t j, do
     }
     return dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
 }
+
+/* A scheme's reports to the core during a step. ry_sim_drift_measured: its drift loop measured
+ * drift2, the largest squared displacement since the last search, which the next
+ * ry_sim_neighbors then uses instead of measuring. ry_sim_checked: its last loop over the
+ * particles made the guard check (src/core/guard_check.h) with these tallies, so that the time
+ * loop gives the verdict without another pass. ry_sim_finish: the run has reached its goal
+ * (e.g. a static solution converged to its residual); the time loop ends after this step. */
+void ry_sim_drift_measured(ry_sim *sim, double drift2);
+void ry_sim_checked(ry_sim *sim, size_t bad, size_t fluid, size_t outside);
+void ry_sim_finish(ry_sim *sim);
+/* The needs of a scheme without a needs function. */
+ry_scheme_needs ry_scheme_needs_default(const ry_sim *sim);
 
 /* Brings the neighbour list up to date for a support radius: rebuilt (and the particles
  * reordered along cells every reorder_every builds, or every build with sort_always) when the

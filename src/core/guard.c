@@ -150,3 +150,10 @@ ry_status ry_check_verdict_here(const ry_sim *sim, size_t nbad, size_t fluid, si
     }
     return RY_OK;
 }
+
+void ry_sim_checked(ry_sim *sim, size_t bad, size_t fluid, size_t outside) {
+    sim->check_bad = bad;
+    sim->check_fluid = fluid;
+    sim->check_outside = outside;
+    sim->checked = 1;
+}

@@ -216,7 +216,8 @@ double ry_sim_bytes_per_particle(const ry_sim *sim) {
     const size_t n = sim->ps.n;
     double b = (double)ry_particles_bytes_per_particle(&sim->ps) +
                ry_cells_bytes_per_particle(&sim->cells) + ry_nlist_bytes_per_particle(&sim->nl);
-    if (n) b += (double)sim->scheme_bytes / (double)n;
+    if (n && sim->scheme && sim->scheme->bytes && sim->scheme_state)
+        b += (double)sim->scheme->bytes(sim->scheme_state) / (double)n;
     return b;
 }
 
@@ -252,4 +253,9 @@ size_t ry_sim_count_outside(const ry_sim *sim) {
             }
         }
     return count;
+}
+
+void ry_sim_drift_measured(ry_sim *sim, double drift2) {
+    sim->drift2 = drift2;
+    sim->drift_known = 1;
 }

@@ -355,8 +355,6 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(ry_case_int(c, "time.max_steps", &maxsteps, 1, 1000000000000L, &sim->max_steps, err));
     RY_TRY(ry_case_int(c, "neighbors.reorder_every", &reorder, 0, 1000000, &reorder, err));
     sim->reorder_every = (int)reorder;
-    for (int d = 0; d < 3; ++d) sim->dd_x[d] = RY_F_X + (d < sim->dim ? d : 0);
-    sim->halo_depth = 2;
     static const char *const xr[3] = {"xref_x", "xref_y", "xref_z"};
     for (int d = 0; d < 3; ++d) {
         int id;
@@ -380,8 +378,20 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(read_probes(sim, c, err));
     RY_TRY(ry_profiles_setup(sim, c, err));
     RY_TRY(read_scheme(sim, c, err));
-    /* The Verlet skin: the scheme may have preset its own default. */
-    double skin = sim->nl_skin > 0 ? sim->nl_skin : 0.15;
+    /* What the scheme needs of the search and the decomposition; the Verlet skin its default
+     * or the core's. */
+    ry_scheme_needs nd = ry_scheme_needs_default(sim);
+    if (sim->scheme->needs) sim->scheme->needs(sim, sim->scheme_state, &nd);
+    sim->sort_always = nd.sort_always;
+    sim->cells_only = nd.cells_only;
+    if (nd.keep_order) sim->reorder_every = 0;
+    sim->open_sink = nd.open_sink;
+    sim->halo_depth = nd.halo_depth;
+    for (int d = 0; d < 3; ++d) sim->dd_x[d] = nd.dd_x[d];
+    sim->guard.max_speed = nd.max_speed;
+    sim->guard.rho_min = nd.rho_min;
+    sim->guard.rho_max = nd.rho_max;
+    double skin = nd.skin > 0 ? nd.skin : 0.15;
     RY_TRY(ry_case_double(c, "neighbors.skin", &skin, 0.0, 1.0, &sim->nl_skin, err));
     RY_TRY(read_guard(sim, c, err));
     RY_TRY(read_checkpoint(sim, c, err));

@@ -56,9 +56,6 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     iisph *s = calloc(1, sizeof *s);
     RY_CHECK(err, s != NULL, RY_ERR_NOMEM, "out of memory");
     *state = s;
-    /* Distributed: every pass that reads its neighbours' results of the pass before gets them
-     * synchronised, so a halo one search radius deep serves. */
-    sim->halo_depth = 1;
     /* Relaxation: 0.5 (Ihmsen et al. 2014) diverges in 3D with the Wendland C2 kernel at
      * h = 1.4 dx (about 130 neighbours; the 3D dam break blows up at the first steps), 0.35
      * converges; 0.3 is the 3D default. */
@@ -150,10 +147,6 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
             ps->f[RY_F_P][i] /= s->warm;
         ps->f[RY_F_RHO][i] = sim->mat[ps->material[i]].density;
     }
-    /* Incompressible: densities stay within the tolerance inside the fluid (summation density
-     * is lower at a free surface, so there is no lower bound). */
-    sim->guard.rho_min = 0.0;
-    sim->guard.rho_max = 1.5;
     return RY_OK;
 }
 
@@ -362,6 +355,18 @@ static int iisph_stat(const ry_sim *sim, const void *state, const char *name, do
     return 1;
 }
 
+/* Distributed: every pass that reads its neighbours' results of the pass before gets them
+ * synchronised, so a halo one search radius deep serves. Incompressible: densities stay within
+ * the tolerance inside the fluid (summation density is lower at a free surface, so there is no
+ * lower bound). */
+static void iisph_needs(const ry_sim *sim, const void *state, ry_scheme_needs *nd) {
+    (void)sim;
+    (void)state;
+    nd->halo_depth = 1;
+    nd->rho_min = 0.0;
+    nd->rho_max = 1.5;
+}
+
 const ry_scheme_type ry_scheme_iisph = {
     .name = "iisph",
     .summary = "implicit incompressible SPH (Ihmsen et al. 2014; number-density two-phase form, "
@@ -373,4 +378,5 @@ const ry_scheme_type ry_scheme_iisph = {
     .state_vars = iisph_vars,
     .report = iisph_report,
     .stat = iisph_stat,
+    .needs = iisph_needs,
     .caps = RY_SCHEME_RHEOLOGY};

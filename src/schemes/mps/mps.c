@@ -379,6 +379,13 @@ static int mps_stat(const ry_sim *sim, const void *state, const char *name, doub
     return 1;
 }
 
+/* Outlets are sinks (mps_outlet_sinks). */
+static void mps_needs(const ry_sim *sim, const void *state, ry_scheme_needs *nd) {
+    (void)sim;
+    (void)state;
+    nd->open_sink = 1;
+}
+
 const ry_scheme_type ry_scheme_mps = {
     .name = "mps",
     .summary = "moving particle semi-implicit (Tamai weight, Iribe gradient, PCG pressure)",
@@ -388,4 +395,5 @@ const ry_scheme_type ry_scheme_mps = {
     .free = mps_free,
     .state_vars = mps_vars,
     .stat = mps_stat,
+    .needs = mps_needs,
     .caps = RY_SCHEME_RHEOLOGY};

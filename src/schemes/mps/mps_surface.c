@@ -176,11 +176,10 @@ void mps_csf_dirichlet(ry_sim *sim, mps *M) {
     ry_st_laplace_pressure(&M->st, sim, M->role, ROLE_SURFACE, M->re_g, M->pd);
 }
 
-/* Outlets are sinks: the fluid that crosses the downstream face is removed, and the free
- * surface this leaves takes the free-surface condition (an open top, an overflow, a pipe's
+/* Outlets are sinks (mps_needs): the fluid that crosses the downstream face is removed, and the
+ * free surface this leaves takes the free-surface condition (an open top, an overflow, a pipe's
  * exit). */
 ry_status mps_outlet_sinks(ry_sim *sim, ry_case *c, ry_error *err) {
-    sim->open_sink = 1;
     for (int q = 0; q < sim->nopen; ++q) {
         char k[64], where[256];
         snprintf(k, sizeof k, "open_boundaries[%d].pressure", q);

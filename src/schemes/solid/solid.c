@@ -258,10 +258,6 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
                                   &s->f_psi, err));
     for (int d = 0; d < sim->dim; ++d)
         memcpy(ps->f[s->f_X[d]], ps->f[RY_F_X + d], ps->n * sizeof(double));
-    /* Distributed: the total-Lagrangian form's neighbours are those of the reference
-     * configuration, and so are its subdomains and halo. */
-    if (!s->ul)
-        for (int d = 0; d < sim->dim; ++d) sim->dd_x[d] = s->f_X[d];
     for (size_t i = 0; i < ps->n; ++i)
         if (ps->kind[i] == RY_KIND_WALL)
             for (int d = 0; d < sim->dim; ++d) ps->f[RY_F_VX + d][i] = 0;
@@ -367,7 +363,7 @@ static ry_status solid_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     }
     RY_TRY(evaluate(sim, s, dt, err));
     if (s->relax != RELAX_NONE && s->residual_tol > 0 && s->residual < s->residual_tol)
-        sim->finished = 1;
+        ry_sim_finish(sim);
     return RY_OK;
 }
 
@@ -431,6 +427,16 @@ static int solid_stat(const ry_sim *sim, const void *state, const char *name, do
     return 0;
 }
 
+/* The updated-Lagrangian form's per-particle arrays are indexed like the particles: their order
+ * is kept. Distributed: the total-Lagrangian form's neighbours are those of the reference
+ * configuration, and so are its subdomains and halo. */
+static void solid_needs(const ry_sim *sim, const void *state, ry_scheme_needs *nd) {
+    const solid *s = state;
+    nd->keep_order = s->ul;
+    if (!s->ul)
+        for (int d = 0; d < sim->dim; ++d) nd->dd_x[d] = s->f_X[d];
+}
+
 const ry_scheme_type ry_scheme_solid = {
     .name = "solid",
     .summary = "elastic solid: total-Lagrangian SPH with corrected kernel gradients, or "
@@ -441,4 +447,5 @@ const ry_scheme_type ry_scheme_solid = {
     .free = solid_free,
     .state_vars = solid_vars,
     .stat = solid_stat,
+    .needs = solid_needs,
     .caps = 0};

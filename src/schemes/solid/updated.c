@@ -68,8 +68,6 @@ ry_status ry_solid_ul_init(ry_sim *sim, ry_case *c, solid *s, ry_error *err) {
                                       &s->f_S[k], err));
         memset(ps->f[s->f_S[k]], 0, ps->n * sizeof(double));
     }
-    /* per-particle arrays are indexed like the particles: keep their order */
-    sim->reorder_every = 0;
     const size_t n = ps->n ? ps->n : 1;
     s->Lc = malloc(9 * n * sizeof *s->Lc);
     s->sig = malloc(9 * n * sizeof *s->sig);

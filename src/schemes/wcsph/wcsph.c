@@ -144,14 +144,6 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     if (loop == LOOP_CELLS)
         RY_CHECK(err, w->fast, RY_ERR_INPUT, "%s: key 'scheme.pair_loop': 'cells' needs %s",
                  ry_case_where(c, "scheme.pair_loop", where, sizeof where), why);
-    sim->sort_always = w->fast;
-    sim->cells_only = w->fast && w->density == DENS_CONTINUITY;
-    /* Default Verlet skin of the cell-range loop: its candidates grow with the square (cube)
-     * of support + skin, while a search (sort, reorder, candidate ranges) costs about two
-     * steps' worth of element-wise passes. Over whole dam breaks on one thread, 10 % in 2D
-     * was about 10 % faster than 5 % (the seed case at 40x80, 0.6 s: a search every second
-     * step late in the run at 5 %), while in 3D 5 % was about 20 % faster than 10 %. */
-    if (w->fast) sim->nl_skin = sim->dim > 2 ? 0.05 : 0.1;
     w->rng_gen = -1;
     if (w->eos == EOS_IDEAL_GAS)
         RY_CHECK(err, w->energy, RY_ERR_INPUT,
@@ -203,13 +195,6 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     int hydro;
     RY_TRY(ry_case_bool(c, "scheme.hydrostatic_init", &no, &hydro, err));
     if (hydro) RY_TRY(hydrostatic_init(sim, w, err));
-    /* A sound run stays far below the sound speed and within a few per cent of the reference
-     * density; beyond these it has failed (checked every step; case section `guard`). */
-    if (w->eos != EOS_IDEAL_GAS) {
-        sim->guard.max_speed = w->c0;
-        sim->guard.rho_min = 0.5;
-        sim->guard.rho_max = 2.0;
-    }
     if (w->eos == EOS_IDEAL_GAS) {
         double e0;
         RY_TRY(ry_case_positive(c, "scheme.initial_energy", NULL, &e0, err));
@@ -249,6 +234,26 @@ static int wcsph_vars(void *state, ry_state_var *v, int max) {
     return n;
 }
 
+/* The cell-range loop sorts by cell at every search and, with the continuity equation, needs
+ * no list. Its default Verlet skin: its candidates grow with the square (cube) of support +
+ * skin, while a search (sort, reorder, candidate ranges) costs about two steps' worth of
+ * element-wise passes. Over whole dam breaks on one thread, 10 % in 2D was about 10 % faster
+ * than 5 % (the seed case at 40x80, 0.6 s: a search every second step late in the run at 5 %),
+ * while in 3D 5 % was about 20 % faster than 10 %. */
+static void wcsph_needs(const ry_sim *sim, const void *state, ry_scheme_needs *nd) {
+    const wcsph *w = state;
+    nd->sort_always = w->fast;
+    nd->cells_only = w->fast && w->density == DENS_CONTINUITY;
+    if (w->fast) nd->skin = sim->dim > 2 ? 0.05 : 0.1;
+    /* A sound run stays far below the sound speed and within a few per cent of the reference
+     * density; beyond these it has failed (checked every step; case section `guard`). */
+    if (w->eos != EOS_IDEAL_GAS) {
+        nd->max_speed = w->c0;
+        nd->rho_min = 0.5;
+        nd->rho_max = 2.0;
+    }
+}
+
 const ry_scheme_type ry_scheme_wcsph = {
     .name = "wcsph",
     .summary = "weakly compressible SPH (Tait/linear/ideal-gas EOS, Adami walls, leapfrog, "
@@ -258,4 +263,6 @@ const ry_scheme_type ry_scheme_wcsph = {
     .step = wc_step,
     .free = wcsph_free,
     .state_vars = wcsph_vars,
+    .needs = wcsph_needs,
+    .bytes = wc_bytes,
     .caps = RY_SCHEME_RHEOLOGY};

@@ -277,8 +277,8 @@ static inline double v8_sum(v8f a) {
 #define RY_DRIVER_ROW_(P, KT)                                                                      \
     [KT] = {{P##_2_##KT##_0, P##_2_##KT##_1}, {P##_3_##KT##_0, P##_3_##KT##_1}}
 
-/* wcsph_step.c: the scheme's buffers, for sim->scheme_bytes */
-size_t wc_bytes(const wcsph *w);
+/* wcsph_step.c: the scheme's buffers (ry_scheme_type.bytes) */
+size_t wc_bytes(const void *state);
 
 /* wcsph_walls.c: pressure, density and ghost velocity of the walls (Adami et al. 2012), from the
  * neighbour list or, for the cell-range loop, from the candidate ranges (then also the walls'

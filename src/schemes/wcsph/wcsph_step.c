@@ -158,8 +158,9 @@ static ry_status st_forces(ry_sim *sim, wcsph *w, ry_error *err) {
     return RY_OK;
 }
 
-/* The scheme's buffers, for sim->scheme_bytes. */
-size_t wc_bytes(const wcsph *w) {
+/* The scheme's buffers (ry_scheme_type.bytes). */
+size_t wc_bytes(const void *state) {
+    const wcsph *w = state;
     const size_t nr = w->rng_cap * (2 * (size_t)w->nrange * sizeof(uint32_t) + 1);
     return w->pack_cap * PK_STRIDE(3) * sizeof(double) +
            w->scratch_cap * (SC_COUNT + 1) * sizeof(double) +
@@ -204,7 +205,6 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     if (w->st.model != RY_ST_NONE) RY_TRY(st_forces(sim, w, err));
     if (w->rheo.ob) polymer_forces(sim, w, &res);
     if (sim->par) global_maxima(sim, &res);
-    sim->scheme_bytes = wc_bytes(w);
     w->amax = sqrt(res.amax2);
     w->vmax = sqrt(res.vmax2);
     w->have_forces = 1;
@@ -395,10 +395,7 @@ static void fast_final_kick(ry_sim *sim, const wcsph *w, double dt, int cont) {
                 ry_check_tally(&c, i, dim, inv_rho0[material[i]], &bad, &fluid, &outside);
         }
     }
-    sim->check_bad = bad;
-    sim->check_fluid = fluid;
-    sim->check_outside = outside;
-    sim->checked = 1;
+    ry_sim_checked(sim, bad, fluid, outside);
 }
 
 ry_status wc_step(ry_sim *sim, void *state, double dt, ry_error *err) {
@@ -410,8 +407,7 @@ ry_status wc_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     /* Kick (half step) and drift; then predict v and rho at the new time for the forces. The
      * same loop measures the largest displacement since the last neighbour search. */
     if (w->fast) {
-        sim->drift2 = fast_kick_drift(sim, w, dt, cont);
-        sim->drift_known = 1;
+        ry_sim_drift_measured(sim, fast_kick_drift(sim, w, dt, cont));
         RY_TRY(evaluate(sim, w, err)); /* may reorder particles: fields move together */
         fast_final_kick(sim, w, dt, cont);
         return RY_OK;
@@ -429,8 +425,7 @@ ry_status wc_step(ry_sim *sim, void *state, double dt, ry_error *err) {
         for (int d = 0; d < dim; ++d) r2 += e[d] * e[d];
         drift2 = r2 > drift2 ? r2 : drift2;
     }
-    sim->drift2 = drift2;
-    sim->drift_known = 1;
+    ry_sim_drift_measured(sim, drift2);
     RY_TRY(evaluate(sim, w, err)); /* may reorder particles: fields move together */
     n = ps->n;
     /* The second half kick, and the guard check of the new state in the same pass. */
@@ -454,9 +449,6 @@ ry_status wc_step(ry_sim *sim, void *state, double dt, ry_error *err) {
             }
         ry_collisions(sim, w->coll_r, w->coll_e, dt, NULL, NULL, w->stw.p);
     }
-    sim->check_bad = bad;
-    sim->check_fluid = fluid;
-    sim->check_outside = outside;
-    sim->checked = 1;
+    ry_sim_checked(sim, bad, fluid, outside);
     return RY_OK;
 }
