@@ -6,6 +6,7 @@
  * CSR matrix of linalg/sparse.h). */
 #include <stdlib.h>
 
+#include "boundary/walls_adami2012.h"
 #include "schemes/iisph/iisph_internal.h"
 
 /* Dynamic viscosity of particle i: its material's, or with a non-Newtonian material the
@@ -16,8 +17,8 @@ static inline double dyn_viscosity(const ry_sim *sim, const iisph *s, size_t i) 
 }
 
 /* The velocity the viscous term sees at each particle (s->vg): its own, or at a wall
- * with wall_velocity: ghost the ghost velocity of Adami et al. (2012, eq. 22-23),
- * 2 v_w - sum_f v_f W_wf / sum_f W_wf, which puts the no-slip condition on the wall surface. */
+ * with wall_velocity: ghost the ghost velocity of Adami et al. (2012, eq. 22-23;
+ * boundary/walls_adami2012.h), which puts the no-slip condition on the wall surface. */
 static void viscous_velocities(ry_sim *sim, iisph *s) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
@@ -28,18 +29,20 @@ static void viscous_velocities(ry_sim *sim, iisph *s) {
     const double *cv = s->pc.v;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        double sw = 0, sv[3] = {0, 0, 0};
+        ry_adami_sums a = {0, 0, {0, 0, 0}};
         if (s->ghost && ps->kind[i] == RY_KIND_WALL)
             for (size_t q = off[i]; q < end[i]; ++q) {
                 const uint32_t j = nb[q];
                 if (!MOBILE[ps->kind[j]]) continue;
                 const double w = cv[q * RY_PAIR_STRIDE + RY_PW_W];
-                sw += w;
-                for (int d = 0; d < dim; ++d) sv[d] += w * ps->f[RY_F_VX + d][j];
+                double vj[3] = {0, 0, 0};
+                for (int d = 0; d < dim; ++d) vj[d] = ps->f[RY_F_VX + d][j];
+                ry_adami_add_weight(&a, w);
+                ry_adami_add_velocity(&a, w, vj, dim);
             }
         for (int d = 0; d < 3; ++d) {
             const double v = d < dim ? ps->f[RY_F_VX + d][i] : 0.0;
-            s->vg[d][i] = sw > 0 ? 2.0 * v - sv[d] / sw : v;
+            s->vg[d][i] = a.sw > 0 ? ry_adami_ghost_velocity(&a, d, v) : v;
         }
     }
 }

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "boundary/walls_adami2012.h"
 #include "schemes/iisph/iisph_internal.h"
 
 /* The lists of map m. */
@@ -17,13 +18,12 @@ void iisph_wall_map_free(wall_map *m) {
     free(m->h);
 }
 
-/* Wall and inlet particles: pressure extrapolated from the fluid with the hydrostatic term,
- * Adami, Hu & Adams (2012), eq. 27, p_w = sum_f (p_f + rho_f g . x_wf) W_wf / sum_f W_wf,
- * from the current iterate (not negative). iisph_wall_map_build sets the walls without a mobile
- * neighbour to 0 and lists the others' terms; iisph_wall_extrapolate sums them in the same
- * order. Two maps: RY_MAP_WALL, the walls from the (heavy) fluid into the pressure field; with a
- * light phase also RY_MAP_LIGHT, the walls and the heavy fluid from the light fluid into s->pl.
- * A target of the map, and a source. */
+/* Wall and inlet particles: pressure extrapolated from the fluid with the hydrostatic term
+ * (boundary/walls_adami2012.h, eq. 27), from the current iterate (not negative).
+ * iisph_wall_map_build sets the walls without a mobile neighbour to 0 and lists the others' terms;
+ * iisph_wall_extrapolate sums them in the same order. Two maps: RY_MAP_WALL, the walls from the
+ * (heavy) fluid into the pressure field; with a light phase also RY_MAP_LIGHT, the walls and the
+ * heavy fluid from the light fluid into s->pl. A target of the map, and a source. */
 static inline int wall_target(const iisph *s, const uint8_t *kind, size_t i, int map) {
     return kind[i] == RY_KIND_WALL || kind[i] == RY_KIND_INLET ||
            (map == RY_MAP_LIGHT && MOBILE[kind[i]] && !s->lt[i]);
@@ -91,11 +91,9 @@ ry_status iisph_wall_map_build(ry_sim *sim, iisph *s, wall_map *m, double *p, in
             const uint32_t j = nb[q];
             const double *P = cv + q * RY_PAIR_STRIDE;
             if (!wall_source(s, kind, j, map) || P[RY_PW_W] == 0) continue;
-            double gr = 0;
-            for (int d = 0; d < dim; ++d) gr += sim->gravity[d] * P[RY_PW_DX + d];
             m->j[e] = j;
             m->wt[e] = P[RY_PW_W];
-            m->h[e] = rho[j] * gr;
+            m->h[e] = ry_adami_head(sim->gravity, P + RY_PW_DX, dim, rho[j]);
             e++;
         }
     }
@@ -105,11 +103,9 @@ ry_status iisph_wall_map_build(ry_sim *sim, iisph *s, wall_map *m, double *p, in
 void iisph_wall_extrapolate(const wall_map *m, const double *p, double *out) {
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t k = 0; k < m->nw; ++k) {
-        double sw = 0, sp = 0;
-        for (size_t e = m->off[k]; e < m->off[k + 1]; ++e) {
-            sw += m->wt[e];
-            sp += (p[m->j[e]] + m->h[e]) * m->wt[e];
-        }
-        out[m->w[k]] = fmax(sp / sw, 0.0); /* sw > 0: every entry has W > 0 */
+        ry_adami_sums a = {0, 0, {0, 0, 0}};
+        for (size_t e = m->off[k]; e < m->off[k + 1]; ++e)
+            ry_adami_add_pressure(&a, m->wt[e], p[m->j[e]], m->h[e]);
+        out[m->w[k]] = fmax(ry_adami_pressure(&a), 0.0); /* sw > 0: every entry has W > 0 */
     }
 }

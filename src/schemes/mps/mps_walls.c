@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "boundary/walls_adami2012.h"
 #include "schemes/mps/mps_internal.h"
 
 /* Checks that bodies[k], named in key, is a body of wall particles. */
@@ -298,9 +299,9 @@ void mps_wall_distances(ry_sim *sim, mps *M) {
     }
 }
 
-/* Wall pressure for the gradient extrapolated from the fluid (as Adami et al. 2012 do for
- * SPH): p_w = sum_f w (p_f + rho_f g.(x_w - x_f)) / sum_f w over the fluid within re_g. Kept
- * in the xs work array (the PPE values stay in the pressure field). */
+/* Wall pressure for the gradient extrapolated from the fluid (boundary/walls_adami2012.h, eq.
+ * 27, with the MPS weight and each liquid's density) over the fluid within re_g, not negative.
+ * Kept in the xs work array (the PPE values stay in the pressure field). */
 void mps_extrapolate_walls(ry_sim *sim, mps *M) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
@@ -311,29 +312,28 @@ void mps_extrapolate_walls(ry_sim *sim, mps *M) {
     for (size_t i = 0; i < n; ++i) {
         pw[i] = p[i];
         if (M->role[i] != ROLE_WALL || !(M->wall_extrapolate || thin_out(M, i))) continue;
-        double s = 0, sw = 0, ss[2] = {0, 0}, sws[2] = {0, 0};
+        ry_adami_sums all = {0, 0, {0, 0, 0}}, sides[2] = {{0, 0, {0, 0, 0}}, {0, 0, {0, 0, 0}}};
         const double *tn = thin_normal(M, i);
         for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
             const uint32_t j = M->pj[q];
             if (ps->kind[j] != RY_KIND_FLUID) continue;
             double dx[3];
-            ry_sim_separation(sim, i, j, dx);
+            ry_sim_separation(sim, i, j, dx); /* x_j - x_i */
+            const double dwf[3] = {-dx[0], -dx[1], -dx[2]};
             const double w = ry_mps_weight_tamai(M->pr[q], re);
-            double gd = 0; /* g . (x_i - x_j) = -g . dx */
-            for (int d = 0; d < sim->dim; ++d) gd -= sim->gravity[d] * dx[d];
-            const double v = p[j] + sim->mat[ps->material[j]].density * gd;
-            s += w * v;
-            sw += w;
+            const double head =
+                ry_adami_head(sim->gravity, dwf, sim->dim, sim->mat[ps->material[j]].density);
+            ry_adami_add_pressure(&all, w, p[j], head);
             if (tn) { /* a thin wall: the fluid on either side of its sheet apart */
                 const int side = tn[0] * dx[0] + tn[1] * dx[1] + tn[2] * dx[2] < 0;
-                ss[side] += w * v;
-                sws[side] += w;
+                ry_adami_add_pressure(&sides[side], w, p[j], head);
             }
         }
-        if (sw > 0) pw[i] = fmax(s / sw, 0.0);
+        if (all.sw > 0) pw[i] = fmax(ry_adami_pressure(&all), 0.0);
         if (tn)
             for (int side = 0; side < 2; ++side)
-                M->tpw[2 * i + side] = sws[side] > 0 ? fmax(ss[side] / sws[side], 0.0) : pw[i];
+                M->tpw[2 * i + side] =
+                    sides[side].sw > 0 ? fmax(ry_adami_pressure(&sides[side]), 0.0) : pw[i];
     }
     for (size_t i = 0; i < n; ++i)
         if (M->role[i] == ROLE_WALL) ps->f[RY_F_P][i] = pw[i];

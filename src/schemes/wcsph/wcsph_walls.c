@@ -5,17 +5,14 @@
  * precision, which then also writes the walls' records). */
 #include <math.h>
 
+#include "boundary/walls_adami2012.h"
 #include "schemes/wcsph/wcsph_internal.h"
 
-/* Wall particles: pressure, density and ghost velocity extrapolated from the fluid (Adami et
- * al. 2012, eq. 22-23 and 27-28). The sums of wall particle i over its fluid neighbours j, from
+/* Wall particles: pressure, density and ghost velocity extrapolated from the fluid
+ * (boundary/walls_adami2012.h). The sums of wall particle i over its fluid neighbours j, from
  * the list (rows) or from the candidate ranges of the cell-range loop. */
-typedef struct wall_sums {
-    double sw, sp, srx, sv[3];
-} wall_sums;
-
 static inline __attribute__((always_inline)) void wall_sums_list(const ry_sim *sim, size_t i,
-                                                                 wall_sums *s) {
+                                                                 ry_adami_sums *s) {
     const ry_particles *ps = &sim->ps;
     const ry_kernel *k = &sim->kernel;
     const int dim = sim->dim;
@@ -30,28 +27,27 @@ static inline __attribute__((always_inline)) void wall_sums_list(const ry_sim *s
         if (periodic) ry_box_min_image(&sim->box, dx);
         for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
         if (r2 >= rad2) continue;
-        double wij = ry_kernel_w(k, sqrt(r2));
-        double gr = 0;
-        for (int d = 0; d < dim; ++d) gr += g[d] * dx[d];
-        s->sw += wij;
-        s->sp += p[j] * wij;
-        s->srx += rho[j] * gr * wij;
-        for (int d = 0; d < dim; ++d) s->sv[d] += ps->f[RY_F_VX + d][j] * wij;
+        const double wij = ry_kernel_w(k, sqrt(r2));
+        double vj[3] = {0, 0, 0};
+        for (int d = 0; d < dim; ++d) vj[d] = ps->f[RY_F_VX + d][j];
+        ry_adami_add_pressure(s, wij, p[j], ry_adami_head(g, dx, dim, rho[j]));
+        ry_adami_add_velocity(s, wij, vj, dim);
     }
 }
 
 /* Pressure, density and ghost velocity of wall (and inlet) particle i from its sums. */
-static inline void wall_set(ry_sim *sim, const wcsph *w, size_t i, const wall_sums *s) {
+static inline void wall_set(ry_sim *sim, const wcsph *w, size_t i, const ry_adami_sums *s) {
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim, inlet = ps->kind[i] == RY_KIND_INLET;
     const int mat = ps->material[i];
     if (s->sw > 0) {
-        const double pw = (s->sp + s->srx) / s->sw;
+        const double pw = ry_adami_pressure(s);
         ps->f[RY_F_P][i] = pw;
         ps->f[RY_F_RHO][i] = eos_density(w, mat, pw);
-        for (int d = 0; d < dim; ++d)
-            ps->f[w->f_vg[d]][i] =
-                inlet ? ps->f[RY_F_VX + d][i] : 2.0 * ps->f[RY_F_VX + d][i] - s->sv[d] / s->sw;
+        for (int d = 0; d < dim; ++d) {
+            const double vw = ps->f[RY_F_VX + d][i];
+            ps->f[w->f_vg[d]][i] = inlet ? vw : ry_adami_ghost_velocity(s, d, vw);
+        }
     } else {
         ps->f[RY_F_P][i] = w->p_background;
         ps->f[RY_F_RHO][i] = w->rho0m[mat];
@@ -64,7 +60,7 @@ void wc_wall_pass(ry_sim *sim, const wcsph *w) {
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         if (!wall_like(&sim->ps, i)) continue;
-        wall_sums s = {0, 0, 0, {0, 0, 0}};
+        ry_adami_sums s = {0, 0, {0, 0, 0}};
         wall_sums_list(sim, i, &s);
         wall_set(sim, w, i, &s);
     }
@@ -121,7 +117,7 @@ static inline v8f shape_v8(const ry_kernel_type kt, v8f q) {
  * then rewritten). */
 static inline __attribute__((always_inline)) void
 wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
-                 const ry_kernel_type kt, wall_sums *s) {
+                 const ry_kernel_type kt, ry_adami_sums *s) {
     const ry_kernel *k = &sim->kernel;
     const int nrange = dim > 2 ? 9 : 3;
     const uint32_t *restrict rg = w->rng + i * 2 * (size_t)nrange;
@@ -157,8 +153,8 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
     /* The kernel's normalisation cancels in every ratio but is kept for sw > 0 semantics. */
     const double norm = k->norm;
     s->sw = norm * v8_sum(sw);
-    s->sp = norm * v8_sum(sp);
-    s->srx = norm * v8_sum(srx);
+    const double sp_p = norm * v8_sum(sp), sp_head = norm * v8_sum(srx);
+    s->sp = sp_p + sp_head;
     s->sv[0] = norm * v8_sum(su);
     s->sv[1] = norm * v8_sum(sv);
     s->sv[2] = norm * v8_sum(sz);
@@ -169,7 +165,7 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
         const size_t n = sim->ps.n;                                                                \
         _Pragma("omp parallel for schedule(static)") for (size_t i = 0; i < n; ++i) {              \
             if (!wall_like(&sim->ps, i)) continue;                                                 \
-            wall_sums s = {0, 0, 0, {0, 0, 0}};                                                    \
+            ry_adami_sums s = {0, 0, {0, 0, 0}};                                                   \
             if (w->wet[i]) wall_sums_ranges(sim, w, i, DIM, KT, &s);                               \
             wall_set(sim, w, i, &s);                                                               \
         }                                                                                          \
