@@ -37,6 +37,12 @@ ry_status ry_csr_reserve(ry_csr *a, size_t n, size_t nz, ry_error *err) {
     return RY_OK;
 }
 
+ry_status ry_csr_rows_from_lengths(ry_csr *a, ry_error *err) {
+    a->row[0] = 0;
+    for (size_t k = 0; k < a->n; ++k) a->row[k + 1] += a->row[k];
+    return ry_csr_reserve(a, a->n, a->row[a->n], err);
+}
+
 void ry_csr_free(ry_csr *a) {
     free(a->row);
     free(a->col);

@@ -1,5 +1,6 @@
-/* A symmetric sparse matrix in CSR form and the Jacobi-preconditioned conjugate-gradient
- * solver of the MPS scheme (pressure Poisson equation, implicit viscosity), with deflation. */
+/* A symmetric sparse matrix in CSR form, its assembly from particle pairs, and the
+ * Jacobi-preconditioned conjugate-gradient solver (with deflation) of the implicit schemes: the
+ * pressure Poisson equation of MPS, the implicit viscosity of MPS and IISPH. */
 #ifndef RYUSHI_MPS_SPARSE_H
 #define RYUSHI_MPS_SPARSE_H
 
@@ -19,9 +20,47 @@ typedef struct ry_csr {
     size_t cap_work;
 } ry_csr;
 
-/* Makes room for n rows and nz entries (keeps nothing). */
+/* Makes room for n rows and nz entries (keeps the row offsets when n is unchanged). */
 ry_status ry_csr_reserve(ry_csr *a, size_t n, size_t nz, ry_error *err);
 void ry_csr_free(ry_csr *a);
+
+/* Assembly of a matrix of the graph-Laplacian form of the implicit schemes, one row per
+ * unknown k, from the pairs (k, j) of its particle with coefficients a_kj >= 0:
+ *   A_kk = d_k + sum_j a_kj (every pair, the unknown neighbours and the known ones),
+ *   A_kl = -a_kj where neighbour j is the unknown l,
+ * symmetric where a_kj = a_jk. In three steps, the rows in parallel:
+ *   1. ry_csr_reserve(A, n, 0), and the length of row k (1 + its unknown neighbours) into
+ *      A->row[k + 1];
+ *   2. ry_csr_rows_from_lengths(A): the offsets and room for the entries;
+ *   3. per row: ry_csr_row_begin, ry_csr_row_pair for each pair in the order of step 1,
+ *      ry_csr_row_end. The diagonal is stored first in the row and in A->diag. */
+ry_status ry_csr_rows_from_lengths(ry_csr *a, ry_error *err);
+
+typedef struct ry_csr_row {
+    ry_csr *a;
+    size_t k, pdiag, p;
+    double diag;
+} ry_csr_row;
+
+static inline ry_csr_row ry_csr_row_begin(ry_csr *a, size_t k, double d_k) {
+    const ry_csr_row r = {a, k, a->row[k], a->row[k] + 1, d_k};
+    return r;
+}
+
+/* A pair of coefficient c; col the neighbour's unknown, or negative for a known neighbour. */
+static inline void ry_csr_row_pair(ry_csr_row *r, double c, int64_t col) {
+    r->diag += c;
+    if (col >= 0) {
+        r->a->col[r->p] = (uint32_t)col;
+        r->a->val[r->p++] = -c;
+    }
+}
+
+static inline void ry_csr_row_end(const ry_csr_row *r) {
+    r->a->col[r->pdiag] = (uint32_t)r->k;
+    r->a->val[r->pdiag] = r->diag;
+    r->a->diag[r->k] = r->diag;
+}
 
 /* The most right-hand sides solved together (ry_csr_pcg_multi). */
 #define RY_CSR_MAX_RHS 3

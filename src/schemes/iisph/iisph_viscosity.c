@@ -178,7 +178,6 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
     const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h;
     ry_csr *A = &s->A;
     RY_TRY(ry_csr_reserve(A, nunk, 0, err));
-    A->row[0] = 0;
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < n; ++i) {
         if (s->unk[i] < 0) continue;
@@ -187,16 +186,14 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
             len += s->unk[nb[q]] >= 0 && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
         A->row[(size_t)s->unk[i] + 1] = len;
     }
-    for (size_t k = 0; k < nunk; ++k) A->row[k + 1] += A->row[k];
-    RY_TRY(ry_csr_reserve(A, nunk, A->row[nunk], err));
+    RY_TRY(ry_csr_rows_from_lengths(A, err));
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (s->unk[i] < 0) continue;
         const size_t k = (size_t)s->unk[i];
-        size_t p = A->row[k];
-        const size_t pdiag = p++;
+        ry_csr_row row = ry_csr_row_begin(A, k, m[i]);
         const double mui = dyn_viscosity(sim, s, i), vi = 1.0 / delta[i];
-        double diag = m[i], known[3] = {0, 0, 0};
+        double known[3] = {0, 0, 0};
         for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
             const double *P = cv + q * RY_PAIR_STRIDE;
@@ -213,17 +210,11 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
                         (P[RY_PW_R2] + eta2);
                 }
             }
-            diag += c;
-            if (!wall) {
-                A->col[p] = (uint32_t)s->unk[j];
-                A->val[p++] = -c;
-            } else {
+            ry_csr_row_pair(&row, c, s->unk[j]); /* (a wall: a known velocity) */
+            if (wall)
                 for (int d = 0; d < dim; ++d) known[d] += c * s->vg[d][j];
-            }
         }
-        A->col[pdiag] = (uint32_t)k;
-        A->val[pdiag] = diag;
-        A->diag[k] = diag;
+        ry_csr_row_end(&row);
         for (int d = 0; d < 3; ++d)
             s->vb[3 * k + d] = d < dim ? m[i] * ps->f[RY_F_VX + d][i] + known[d] : 0.0;
     }

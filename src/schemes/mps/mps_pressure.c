@@ -49,10 +49,9 @@ ry_status mps_assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double dt,
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const double re = M->re_l, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
-    /* Row lengths (diagonal included) in parallel, their prefix sums, then the rows. */
-    RY_TRY(ry_csr_reserve(&M->A, nunk, 0, err));
+    /* Row lengths (diagonal included) in parallel, their offsets, then the rows. */
     ry_csr *A = &M->A;
-    A->row[0] = 0;
+    RY_TRY(ry_csr_reserve(A, nunk, 0, err));
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;
@@ -60,30 +59,20 @@ ry_status mps_assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double dt,
         for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) len += M->unk[M->pj[q]] >= 0;
         A->row[(size_t)M->unk[i] + 1] = len;
     }
-    for (size_t k = 0; k < nunk; ++k) A->row[k + 1] += A->row[k];
-    RY_TRY(ry_csr_reserve(&M->A, nunk, A->row[nunk], err));
+    RY_TRY(ry_csr_rows_from_lengths(A, err));
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;
-        const size_t k = (size_t)M->unk[i];
-        size_t p = A->row[k];
-        const size_t pdiag = p++;
-        double diag = diag_extra;
+        ry_csr_row row = ry_csr_row_begin(A, (size_t)M->unk[i], diag_extra);
         for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
             const uint32_t j = M->pj[q];
             double coef = 0, a = 0;
             if (viscous ? couple_viscous(sim, M, i, j, &coef, dt)
                         : couple_pressure(sim, M, i, j, &coef, dt))
                 a = cl * coef * ry_mps_weight_tamai(M->pr[q], re);
-            diag += a;
-            if (M->unk[j] >= 0) {
-                A->col[p] = (uint32_t)M->unk[j];
-                A->val[p++] = -a;
-            }
+            ry_csr_row_pair(&row, a, M->unk[j]);
         }
-        A->col[pdiag] = (uint32_t)k;
-        A->val[pdiag] = diag;
-        A->diag[k] = diag;
+        ry_csr_row_end(&row);
     }
     return RY_OK;
 }
