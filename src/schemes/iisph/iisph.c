@@ -119,7 +119,7 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     s->delta0 = ry_lattice_number_density(&sim->kernel, sim->dim, sim->dx);
     /* The lattice's value of the viscous term for a unit shear Laplacian (Wendland C2,
      * h = 1.4 dx: projected 0.85 in 2D, 0.90 in 3D; Morris 0.98). */
-    const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h;
+    const double eta2 = ry_morris_eta2(sim->kernel.h);
     s->mu_corr = corr ? 1.0 / ry_lattice_viscous_factor(&sim->kernel, sim->dim, sim->dx,
                                                         1.0 / s->delta0, eta2, !s->morris)
                       : 1.0;

@@ -14,6 +14,7 @@
 #include "physics/colour_field.h"
 #include "pairs/pair_cache.h"
 #include "physics/polymer_stress.h"
+#include "physics/viscosity_morris1997.h"
 
 /* Grows the array ptr to count elements; on failure leaves it as it is and clears ok. */
 #define RY_IISPH_GROW(ptr, count, ok)                                                              \

@@ -57,7 +57,7 @@ static inline void force_row(const ry_sim *sim, const iisph *s, size_t i, const 
     const size_t *end = s->pc.end;
     const uint8_t *kind = ps->kind;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
-    const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h, cvis = 2.0 * (dim + 2);
+    const double eta2 = ry_morris_eta2(sim->kernel.h), cvis = 2.0 * (dim + 2);
     double a[3] = {0, 0, 0};
     if (MOBILE[kind[i]]) {
         const double mui = dyn_viscosity(sim, s, i);
@@ -70,15 +70,17 @@ static inline void force_row(const ry_sim *sim, const iisph *s, size_t i, const 
             if (!MOBILE[kind[j]] && s->slip) continue;
             const double muj = wall ? mui : dyn_viscosity(sim, s, j);
             if (mui + muj <= 0) continue;
-            const double mu = 2 * mui * muj / (mui + muj);
             const double vj = wall ? 1.0 / delta[i] : 1.0 / delta[j];
-            if (s->morris) { /* 2 V mu x_ij . grad W / (r^2 + eta^2) v_ij (Morris 1997) */
+            if (s->morris) {
                 double xg = 0;
                 for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
-                const double f = 2.0 * vj * mu * xg / (P[RY_PW_R2] + eta2);
+                const double f =
+                    ry_morris_coefficient(ry_morris_mu_harmonic2(mui, muj),
+                                          ry_morris_weight(vj, xg, 1.0 / (P[RY_PW_R2] + eta2)));
                 for (int d = 0; d < dim; ++d) a[d] += f * (vg[d][i] - vg[d][j]);
                 continue;
             }
+            const double mu = 2 * mui * muj / (mui + muj);
             double vx = 0;
             for (int d = 0; d < dim; ++d) vx += (vg[d][i] - vg[d][j]) * P[RY_PW_DX + d];
             const double f = cvis * vj * mu * vx / (P[RY_PW_R2] + eta2);
@@ -175,7 +177,7 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
     const uint32_t *nb = s->pc.j; /* the pairs within the support */
     const size_t *end = s->pc.end;
     const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
-    const double eta2 = 0.01 * sim->kernel.h * sim->kernel.h;
+    const double eta2 = ry_morris_eta2(sim->kernel.h);
     ry_csr *A = &s->A;
     RY_TRY(ry_csr_reserve(A, nunk, 0, err));
 #pragma omp parallel for schedule(dynamic, 256)
@@ -202,13 +204,12 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
             double c = 0;
             if (!(wall && s->slip)) {
                 const double muj = wall ? mui : dyn_viscosity(sim, s, j);
-                if (mui + muj > 0) {
-                    double xg = 0;
-                    for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
-                    const double vj = wall ? vi : 1.0 / delta[j];
-                    c = -2.0 * dt * vi * vj * (2 * mui * muj / (mui + muj)) * xg /
-                        (P[RY_PW_R2] + eta2);
-                }
+                double xg = 0;
+                for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
+                const double vj = wall ? vi : 1.0 / delta[j];
+                c = -dt * vi *
+                    ry_morris_coefficient(ry_morris_mu_harmonic2(mui, muj),
+                                          ry_morris_weight(vj, xg, 1.0 / (P[RY_PW_R2] + eta2)));
             }
             ry_csr_row_pair(&row, c, s->unk[j]); /* (a wall: a known velocity) */
             if (wall)

@@ -89,7 +89,7 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     /* The lattice's value of the Morris term for a unit Laplacian (Wendland C2, h = 1.4 dx, 2D:
      * 0.979); the transport-velocity form has no 0.01 h^2 (docs/wcsph.md). */
     const double dxd = sim->dim > 2 ? sim->dx * sim->dx * sim->dx : sim->dx * sim->dx;
-    const double eta2 = w->tvf ? 0.0 : 0.01 * sim->kernel.h * sim->kernel.h;
+    const double eta2 = w->tvf ? 0.0 : ry_morris_eta2(sim->kernel.h);
     w->mu_corr =
         corr ? 1.0 / ry_lattice_viscous_factor(&sim->kernel, sim->dim, sim->dx, dxd, eta2, 0) : 1.0;
     RY_TRY(ry_case_bool(c, "scheme.wall_repulsion", &yes, &w->repulse, err));

@@ -357,7 +357,7 @@ void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     c.inv_h = (float)k->inv_h;
     c.dnorm_h = (float)(k->dnorm / k->h);
     c.h0 = (float)k->h;
-    c.eta2 = (float)(0.01 * k->h * k->h);
+    c.eta2 = (float)ry_morris_eta2(k->h);
     c.alpha = (float)w->alpha;
     c.c0 = (float)w->c0;
     c.beta = (float)w->beta;

@@ -13,6 +13,7 @@
 #include "ryushi/surface_tension.h"
 #include "pairs/pair_cache.h"
 #include "physics/polymer_stress.h"
+#include "physics/viscosity_morris1997.h"
 
 enum { DENS_CONTINUITY, DENS_SUMMATION };
 enum { EOS_TAIT, EOS_LINEAR, EOS_IDEAL_GAS };

@@ -143,7 +143,7 @@ static void pass_ctx_init(pass_ctx *c, ry_sim *sim, const wcsph *w) {
     c->k = k;
     c->box = &sim->box;
     c->h0 = k->h;
-    c->eta2 = 0.01 * k->h * k->h;
+    c->eta2 = ry_morris_eta2(k->h);
     c->inv_h0 = 1.0 / k->h;
     c->dnorm_h = k->dnorm / k->h; /* (dW/dr) / r = dnorm_h f'(q)/q */
     c->rad2 = sim->nl_radius * sim->nl_radius;
@@ -267,7 +267,8 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         const double fp = -mj * (pri + prj + pi_ij) * fw;
         /* Morris et al. (1997) laminar viscosity (a wall takes the fluid's viscosity). */
         const double muj = isj * smu[p] + (1.0 - isj) * mui; /* isj is 0 or 1 */
-        const double fv = svis[p] * volj * (mui + muj) * inv_rhoi * fw * r2 * ieta;
+        const double lw = ry_morris_weight(volj, fw * r2, ieta);
+        const double fv = svis[p] * ry_morris_coefficient(mui + muj, lw) * inv_rhoi;
         /* Wall repulsion, the rare case of a fluid particle very close to a wall. */
         const double fr =
             wall_repulsion(r2, isj == 0.0 && r2 < rep_r02 && r2 > 0.0, rep_r02, rep_d);
@@ -277,7 +278,7 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         dr += volj * vdw * fw;
         double drj = rhoj - rhoi;
         if (fourtakas) drj += fh * (gx * dx + gy * dy + gz * dz);
-        dd -= isj * drj * fw * r2 * ieta * volj;
+        dd -= isj * drj * lw;
         if (energy) dei += 0.5 * mj * (pri + prj + pi_ij) * vdx * fw;
     }
     const double ai[3] = {ax + gx, ay + gy, az + gz}, vi3[3] = {ui, vi, wi};
