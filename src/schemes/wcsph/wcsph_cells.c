@@ -32,13 +32,6 @@ typedef struct fast_ctx {
     int cont, fourtakas;
 } fast_ctx;
 
-/* (dW/dq)/q of the Wendland kernels (q < 2 is masked by the caller). */
-static inline v8f dshape_over_q_v8(const ry_kernel_type kt, v8f q) {
-    const v8f s = 0.5f * q, u = 1.0f - s, u2 = u * u;
-    return kt == RY_KERNEL_WENDLAND_C2 ? -5.0f * u2 * u
-                                       : (-14.0f / 3.0f) * u2 * u2 * u * (1.0f + 5.0f * s);
-}
-
 static inline __attribute__((always_inline)) void fast_particle(const fast_ctx *restrict c,
                                                                 size_t i, const int dim,
                                                                 const ry_kernel_type kt,
@@ -74,7 +67,8 @@ static inline __attribute__((always_inline)) void fast_particle(const fast_ctx *
             if (dim > 2) r2 += dz * dz;
             /* i itself (r2 = 0) contributes nothing: every term has a factor x_ij or r2, and
              * the repulsion needs r2 > 0. */
-            const v8f fw = v8_and(r2 < rad2, dnorm_h * dshape_over_q_v8(kt, v8_sqrt(r2) * inv_h));
+            const v8f fw =
+                v8_and(r2 < rad2, dnorm_h * v8_kernel_dshape_over_q(kt, v8_sqrt(r2) * inv_h));
             const v8f vx = ui - v8_load(fk + FK_UG * fs + j),
                       vy = vi - v8_load(fk + FK_VG * fs + j);
             const v8f vz = dim > 2 ? wi - v8_load(fk + FK_WG * fs + j) : zero;
@@ -137,25 +131,25 @@ typedef void (*fast_driver)(const fast_ctx *c, size_t n, force_out *res);
         res->amax2 = amax2;                                                                        \
         res->vmax2 = vmax2;                                                                        \
     }
-RY_FAST_DRIVER_(2, RY_KERNEL_WENDLAND_C2)
-RY_FAST_DRIVER_(3, RY_KERNEL_WENDLAND_C2)
-RY_FAST_DRIVER_(2, RY_KERNEL_WENDLAND_C4)
-RY_FAST_DRIVER_(3, RY_KERNEL_WENDLAND_C4)
+#define RY_FAST_DRIVERS_(KT) RY_FAST_DRIVER_(2, KT) RY_FAST_DRIVER_(3, KT)
+RY_FOR_EACH_KERNEL_(RY_FAST_DRIVERS_)
+#define RY_FAST_ROW_(KT) [KT] = {fast_2_##KT, fast_3_##KT},
+static const fast_driver fast_drivers[RY_KERNEL_COUNT][2] = {RY_FOR_EACH_KERNEL_(RY_FAST_ROW_)};
+#undef RY_FAST_ROW_
+#undef RY_FAST_DRIVERS_
 #undef RY_FAST_DRIVER_
 
-/* Whether the cell-range loop serves this case: Wendland kernels, no periodic directions, no
+/* Whether the cell-range loop serves this case (every kernel): no periodic directions, no
  * variable h, energy equation, transport velocity or open boundaries (whose buffers change the
- * particle set between searches). */
+ * particle set between searches), rheology or surface tension. */
 int wc_fast_eligible(const ry_sim *sim, const wcsph *w, const char **why) {
-    const ry_kernel_type kt = sim->kernel.type;
-    *why = kt != RY_KERNEL_WENDLAND_C2 && kt != RY_KERNEL_WENDLAND_C4 ? "a Wendland kernel"
-           : is_periodic(sim)                                         ? "no periodic directions"
-           : w->variable_h || w->energy                               ? "no variable_h or energy"
-           : w->tvf                                                   ? "no transport_velocity"
-           : sim->nopen > 0                                           ? "no open boundaries"
-           : w->rheo.on                                               ? "Newtonian materials"
-           : w->st.model != RY_ST_NONE                                ? "no surface_tension"
-                                                                      : NULL;
+    *why = is_periodic(sim)             ? "no periodic directions"
+           : w->variable_h || w->energy ? "no variable_h or energy"
+           : w->tvf                     ? "no transport_velocity"
+           : sim->nopen > 0             ? "no open boundaries"
+           : w->rheo.on                 ? "Newtonian materials"
+           : w->st.model != RY_ST_NONE  ? "no surface_tension"
+                                        : NULL;
     return *why == NULL;
 }
 
@@ -363,10 +357,7 @@ void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     c.beta = (float)w->beta;
     c.rep_d = (float)w->rep_d;
     c.rep_r02 = (float)(w->rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0);
-    static const fast_driver drivers[2][2] = {
-        {fast_2_RY_KERNEL_WENDLAND_C2, fast_3_RY_KERNEL_WENDLAND_C2},
-        {fast_2_RY_KERNEL_WENDLAND_C4, fast_3_RY_KERNEL_WENDLAND_C4}};
-    drivers[k->type == RY_KERNEL_WENDLAND_C4][sim->dim - 2](&c, ps->n, res);
+    fast_drivers[k->type][sim->dim - 2](&c, ps->n, res);
 }
 
 /* Whether every material has the density and viscosity of the first, and the equation of

@@ -14,6 +14,7 @@
 #include "pairs/pair_cache.h"
 #include "physics/polymer_stress.h"
 #include "physics/viscosity_morris1997.h"
+#include "schemes/wcsph/wcsph_v8.h"
 
 enum { DENS_CONTINUITY, DENS_SUMMATION };
 enum { EOS_TAIT, EOS_LINEAR, EOS_IDEAL_GAS };
@@ -217,56 +218,6 @@ static inline double pack_mu(const ry_sim *sim, const wcsph *w, size_t i) {
 }
 static inline double pack_visc(const ry_sim *sim, const wcsph *w, size_t i) {
     return sim->ps.kind[i] != RY_KIND_WALL || w->wall == WALL_NO_SLIP ? 1.0 : 0.0;
-}
-
-/* Eight lanes of single precision (GCC/Clang vector extensions: one AVX register, two SSE
- * registers, or lane loops elsewhere). */
-typedef float v8f __attribute__((vector_size(32)));
-typedef int v8i __attribute__((vector_size(32)));
-typedef double v8d __attribute__((vector_size(64)));
-
-static inline v8f v8_load(const float *p) {
-    v8f v;
-    memcpy(&v, p, sizeof v);
-    return v;
-}
-/* x_i - x_j for eight j, formed in double precision and rounded. */
-static inline v8f v8_sep(double xi, const double *xj) {
-    v8d v;
-    memcpy(&v, xj, sizeof v);
-    return __builtin_convertvector(xi - v, v8f);
-}
-/* m ? a : 0 for a lane mask m (all bits set or clear). */
-static inline v8f v8_and(v8i m, v8f a) {
-    return (v8f)(m & (v8i)a);
-}
-static inline v8f v8_sqrt(v8f a) {
-#if defined(__AVX__)
-    return __builtin_ia32_sqrtps256(a);
-#else
-    v8f r;
-    for (int k = 0; k < 8; ++k) r[k] = sqrtf(a[k]);
-    return r;
-#endif
-}
-/* Whether any lane of a mask is set. */
-static inline int v8_any(v8i m) {
-#if defined(__AVX__)
-    return !__builtin_ia32_ptestz256((__attribute__((vector_size(32))) long long)m,
-                                     (__attribute__((vector_size(32))) long long)m);
-#else
-    int a = 0;
-    for (int k = 0; k < 8; ++k) a |= m[k];
-    return a != 0;
-#endif
-}
-/* The sum of the lanes, in double precision: halves added, then pairs. */
-static inline double v8_sum(v8f a) {
-    typedef float v4f __attribute__((vector_size(16)));
-    typedef double v4d __attribute__((vector_size(32)));
-    const v4f lo = {a[0], a[1], a[2], a[3]}, hi = {a[4], a[5], a[6], a[7]};
-    const v4d s = __builtin_convertvector(lo, v4d) + __builtin_convertvector(hi, v4d);
-    return (s[0] + s[2]) + (s[1] + s[3]);
 }
 
 /* The kernels the pair loops are compiled for, and a row of a driver table: [kernel][dim - 2]

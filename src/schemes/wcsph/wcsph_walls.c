@@ -105,13 +105,6 @@ static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
     }
 }
 
-/* W(q) / norm of the Wendland kernels (q < 2 is masked by the caller). */
-static inline v8f shape_v8(const ry_kernel_type kt, v8f q) {
-    const v8f s = 0.5f * q, t = 1.0f - s, t2 = t * t;
-    return kt == RY_KERNEL_WENDLAND_C2 ? t2 * t2 * (1.0f + 4.0f * s)
-                                       : t2 * t2 * t2 * (1.0f + s * (6.0f + s * (35.0f / 3.0f)));
-}
-
 /* The wall pass of the cell-range loop: the sums of wall particle i over the fluid among its
  * candidates, in single precision from the records of wc_prepare_pairs (whose wall entries are
  * then rewritten). */
@@ -141,7 +134,7 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
                 gr += gz * dz;
             }
             const v8i on = (r2 < rad2) & (v8_load(fk + FK_FLUID * fs + j) != 0.0f);
-            const v8f wij = v8_and(on, shape_v8(kt, v8_sqrt(r2) * inv_h));
+            const v8f wij = v8_and(on, v8_kernel_shape(kt, v8_sqrt(r2) * inv_h));
             sw += wij;
             sp += v8_load(fk + FK_P * fs + j) * wij;
             srx += (rho_ref + v8_load(fk + FK_DRHO * fs + j)) * gr * wij;
@@ -179,15 +172,15 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
                 fpack_one(sim, w, i, pack_mu(sim, w, i), pack_visc(sim, w, i));                    \
         }                                                                                          \
     }
-RY_WALL_RANGES_(2, RY_KERNEL_WENDLAND_C2)
-RY_WALL_RANGES_(3, RY_KERNEL_WENDLAND_C2)
-RY_WALL_RANGES_(2, RY_KERNEL_WENDLAND_C4)
-RY_WALL_RANGES_(3, RY_KERNEL_WENDLAND_C4)
+#define RY_WALL_RANGES_ALL_(KT) RY_WALL_RANGES_(2, KT) RY_WALL_RANGES_(3, KT)
+RY_FOR_EACH_KERNEL_(RY_WALL_RANGES_ALL_)
+#undef RY_WALL_RANGES_ALL_
 #undef RY_WALL_RANGES_
 
 void wc_fast_wall_pass(ry_sim *sim, const wcsph *w) {
-    static void (*const drivers[2][2])(ry_sim *, const wcsph *) = {
-        {wall_ranges_2_RY_KERNEL_WENDLAND_C2, wall_ranges_3_RY_KERNEL_WENDLAND_C2},
-        {wall_ranges_2_RY_KERNEL_WENDLAND_C4, wall_ranges_3_RY_KERNEL_WENDLAND_C4}};
-    drivers[sim->kernel.type == RY_KERNEL_WENDLAND_C4][sim->dim - 2](sim, w);
+#define RY_WALL_ROW_(KT) [KT] = {wall_ranges_2_##KT, wall_ranges_3_##KT},
+    static void (*const drivers[RY_KERNEL_COUNT][2])(ry_sim *, const wcsph *) = {
+        RY_FOR_EACH_KERNEL_(RY_WALL_ROW_)};
+#undef RY_WALL_ROW_
+    drivers[sim->kernel.type][sim->dim - 2](sim, w);
 }
