@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -188,6 +189,12 @@ static ry_status setup_case(const run_args *a, ry_case **c, ry_sim *sim, ry_erro
     return ry_sim_setup(sim, *c, a->out_dir, err);
 }
 
+/* The process's peak resident memory so far, MB (getrusage: kB on Linux). */
+static double peak_rss_mb(void) {
+    struct rusage u;
+    return getrusage(RUSAGE_SELF, &u) == 0 ? (double)u.ru_maxrss / 1024.0 : 0.0;
+}
+
 static int cmd_run(int argc, char **argv) {
     run_args a;
     int rc = parse_args(argc, argv, 2, &a, 1);
@@ -232,10 +239,11 @@ static int cmd_run(int argc, char **argv) {
     }
     printf("summary status=%s steps=%ld particles=%zu t=%.6g wall_s=%.3f "
            "particle_steps_per_s=%.4g threads=%d%s searches=%ld list_edits=%ld outputs=%d "
-           "output=%s\n",
+           "bytes_per_particle=%.0f peak_rss_mb=%.1f output=%s\n",
            st == RY_OK ? "ok" : ry_status_name(st), stats.steps, sim.ps.n, sim.t, stats.wall_s,
            stats.particle_steps_per_s, omp_get_max_threads(), scheme_stats, sim.searches,
-           sim.nl_edits, sim.output_index, sim.out_dir);
+           sim.nl_edits, sim.output_index, ry_sim_bytes_per_particle(&sim), peak_rss_mb(),
+           sim.out_dir);
     ry_sim_free(&sim);
     ry_case_free(c);
     free(a.sets);

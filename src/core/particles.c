@@ -114,8 +114,9 @@ ry_status ry_particles_reserve(ry_particles *ps, size_t cap, ry_error *err) {
     if (cap <= ps->cap) return RY_OK;
     for (int k = 0; k < ps->nfields; ++k) {
         if (!field_allocated(ps, ps->info[k].component)) continue;
+        /* (not cleared: ry_particles_add clears what it adds, and untouched room costs no
+         * memory) */
         RY_TRY(realloc_array((void **)&ps->f[k], cap, sizeof(double), err));
-        memset(ps->f[k] + ps->cap, 0, (cap - ps->cap) * sizeof(double));
     }
     RY_TRY(realloc_array((void **)&ps->id, cap, sizeof *ps->id, err));
     RY_TRY(realloc_array((void **)&ps->kind, cap, sizeof *ps->kind, err));

@@ -168,8 +168,12 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     }
     RY_TRY(
         ry_particles_add_field(ps, "density_half", "kg/m^3", -1, RY_FIELD_STATE, &w->f_rhoh, err));
-    RY_TRY(ry_particles_add_field(ps, "energy_half", "J/kg", -1, RY_FIELD_STATE, &w->f_eh, err));
-    RY_TRY(ry_particles_add_field(ps, "h_half", "m", -1, RY_FIELD_STATE, &w->f_hh, err));
+    w->f_eh = w->f_hh = -1; /* (only where they are integrated) */
+    if (w->energy)
+        RY_TRY(
+            ry_particles_add_field(ps, "energy_half", "J/kg", -1, RY_FIELD_STATE, &w->f_eh, err));
+    if (w->variable_h)
+        RY_TRY(ry_particles_add_field(ps, "h_half", "m", -1, RY_FIELD_STATE, &w->f_hh, err));
     if (w->tvf) { /* per-evaluation quantities the transport-velocity pair loop reads */
         RY_TRY(ry_particles_add_field(ps, "volume", "m^3", -1, 0, &w->f_vol, err));
         RY_TRY(ry_particles_add_field(ps, "dynamic_viscosity", "Pa s", -1, 0, &w->f_mu, err));
