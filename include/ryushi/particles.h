@@ -33,13 +33,16 @@
     X(RY_F_DRHO, "density_rate", "kg/m^3/s", -1, 0)                                                \
     X(RY_F_P, "pressure", "Pa", -1, RY_FIELD_STATE)                                                \
     X(RY_F_MASS, "mass", "kg", -1, RY_FIELD_STATE)                                                 \
-    X(RY_F_H, "smoothing_length", "m", -1, RY_FIELD_STATE)                                         \
-    X(RY_F_E, "energy", "J/kg", -1, RY_FIELD_STATE)                                                \
-    X(RY_F_DE, "energy_rate", "W/kg", -1, 0)
+    X(RY_F_H, "smoothing_length", "m", -1, RY_FIELD_STATE | RY_FIELD_ON_REQUEST)                   \
+    X(RY_F_E, "energy", "J/kg", -1, RY_FIELD_STATE | RY_FIELD_ON_REQUEST)                          \
+    X(RY_F_DE, "energy_rate", "W/kg", -1, RY_FIELD_ON_REQUEST)
 
 enum {
-    RY_FIELD_STATE = 1, /* part of the state: checkpointed (others are recomputed each step) */
-    RY_FIELD_OUTPUT = 2 /* written to VTK output by default */
+    RY_FIELD_STATE = 1,  /* part of the state: checkpointed (others are recomputed each step) */
+    RY_FIELD_OUTPUT = 2, /* written to VTK output by default */
+    /* no array (f[k] NULL) until a scheme asks for it (ry_particles_use_field): a variable
+     * smoothing length, the energy equation */
+    RY_FIELD_ON_REQUEST = 4
 };
 
 typedef enum ry_field_id {
@@ -93,6 +96,8 @@ size_t ry_particles_limit(void);
 /* Sets up an empty set with the core fields. */
 ry_status ry_particles_init(ry_particles *ps, int dim, ry_error *err);
 void ry_particles_free(ry_particles *ps);
+/* Gives field k (flagged RY_FIELD_ON_REQUEST) its array, zero for every particle. */
+ry_status ry_particles_use_field(ry_particles *ps, int k, ry_error *err);
 /* Ensures room for cap particles. */
 ry_status ry_particles_reserve(ry_particles *ps, size_t cap, ry_error *err);
 /* Appends count particles with zeroed fields, new ids, kind fluid and material 0; *first is

@@ -17,8 +17,8 @@ int ry_kind_from_name(const char *name) {
     return -1;
 }
 
-static int field_allocated(const ry_particles *ps, int comp) {
-    return comp < ps->dim;
+static int field_allocated(const ry_particles *ps, int k) {
+    return ps->info[k].component < ps->dim && !(ps->info[k].flags & RY_FIELD_ON_REQUEST);
 }
 
 static ry_status grow_fields(ry_particles *ps, ry_error *err) {
@@ -56,7 +56,7 @@ ry_status ry_particles_add_field(ry_particles *ps, const char *name, const char 
         free(fi->unit);
         return ry_error_set(err, RY_ERR_NOMEM, "out of memory (field '%s')", name);
     }
-    if (field_allocated(ps, component) && ps->cap) {
+    if (field_allocated(ps, k) && ps->cap) {
         ps->f[k] = calloc(ps->cap, sizeof(double));
         if (!ps->f[k]) {
             free(fi->name);
@@ -66,6 +66,18 @@ ry_status ry_particles_add_field(ry_particles *ps, const char *name, const char 
     }
     ps->nfields++;
     if (id) *id = k;
+    return RY_OK;
+}
+
+ry_status ry_particles_use_field(ry_particles *ps, int k, ry_error *err) {
+    RY_CHECK(err, k >= 0 && k < ps->nfields, RY_ERR_INTERNAL, "no field %d", k);
+    if (!(ps->info[k].flags & RY_FIELD_ON_REQUEST)) return RY_OK;
+    ps->info[k].flags &= ~RY_FIELD_ON_REQUEST;
+    if (field_allocated(ps, k) && ps->cap) {
+        ps->f[k] = calloc(ps->cap, sizeof(double));
+        RY_CHECK(err, ps->f[k] != NULL, RY_ERR_NOMEM, "out of memory (field '%s')",
+                 ps->info[k].name);
+    }
     return RY_OK;
 }
 
@@ -113,7 +125,7 @@ static ry_status realloc_array(void **p, size_t count, size_t size, ry_error *er
 ry_status ry_particles_reserve(ry_particles *ps, size_t cap, ry_error *err) {
     if (cap <= ps->cap) return RY_OK;
     for (int k = 0; k < ps->nfields; ++k) {
-        if (!field_allocated(ps, ps->info[k].component)) continue;
+        if (!field_allocated(ps, k)) continue;
         /* (not cleared: ry_particles_add clears what it adds, and untouched room costs no
          * memory) */
         RY_TRY(realloc_array((void **)&ps->f[k], cap, sizeof(double), err));
@@ -209,7 +221,7 @@ ry_status ry_particles_permute(ry_particles *ps, const uint32_t *order, ry_error
 size_t ry_particles_bytes_per_particle(const ry_particles *ps) {
     size_t b = sizeof *ps->id + sizeof *ps->kind + sizeof *ps->material;
     for (int k = 0; k < ps->nfields; ++k)
-        if (field_allocated(ps, ps->info[k].component)) b += sizeof(double);
+        if (field_allocated(ps, k)) b += sizeof(double);
     return b;
 }
 

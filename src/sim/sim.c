@@ -335,13 +335,12 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(st);
     RY_TRY(ry_open_setup(sim, c, err));
 
-    /* Mass from the material density on the lattice; density at rest; smoothing length. */
+    /* Mass from the material density on the lattice; density at rest. */
     double vol = pow(sim->dx, sim->dim);
     for (size_t i = 0; i < sim->ps.n; ++i) {
         const ry_material *m = &sim->mat[sim->ps.material[i]];
         sim->ps.f[RY_F_MASS][i] = m->density * vol;
         sim->ps.f[RY_F_RHO][i] = m->density;
-        sim->ps.f[RY_F_H][i] = sim->kernel.h;
     }
     RY_TRY(read_domain(sim, c, err));
 

@@ -30,11 +30,12 @@ static void test_dimension_fields(void **state) {
     assert_non_null(ps.f[RY_F_VY]);
     assert_null(ps.f[RY_F_Z]); /* no z in 2D */
     assert_null(ps.f[RY_F_AZ]);
-    /* 16 core fields, 3 of them z components: 13 doubles + id 8 + kind 1 + material 1 */
-    assert_int_equal(ry_particles_bytes_per_particle(&ps), 13 * 8 + 10);
+    /* 16 core fields, 3 of them z components and 3 on request (smoothing length, energy and
+     * its rate): 10 doubles + id 8 + kind 1 + material 1 */
+    assert_int_equal(ry_particles_bytes_per_particle(&ps), 10 * 8 + 10);
     ry_particles_free(&ps);
     assert_int_equal(ry_particles_init(&ps, 3, &err), RY_OK);
-    assert_int_equal(ry_particles_bytes_per_particle(&ps), 16 * 8 + 10);
+    assert_int_equal(ry_particles_bytes_per_particle(&ps), 13 * 8 + 10);
     ry_particles_free(&ps);
     assert_int_equal(ry_particles_init(&ps, 4, &err), RY_ERR_INPUT);
 }
@@ -87,6 +88,39 @@ static void test_extra_field_follows(void **state) {
     assert_int_equal(ry_particles_permute(&ps, order, &err), RY_OK);
     fill(&ps, 3);
     assert_int_equal(ps.id[ps.n - 1], 5102);
+    free(order);
+    ry_particles_free(&ps);
+}
+
+/* A field on request has no array until asked for; then it holds zeros, follows growth,
+ * reordering and removal like any other, and counts in the bytes per particle. */
+static void test_field_on_request(void **state) {
+    (void)state;
+    ry_particles ps;
+    ry_error err;
+    assert_int_equal(ry_particles_init(&ps, 2, &err), RY_OK);
+    fill(&ps, 50);
+    assert_null(ps.f[RY_F_E]);
+    assert_null(ps.f[RY_F_H]);
+    const size_t before = ry_particles_bytes_per_particle(&ps);
+    assert_int_equal(ry_particles_use_field(&ps, RY_F_E, &err), RY_OK);
+    assert_int_equal(ry_particles_use_field(&ps, RY_F_E, &err), RY_OK); /* twice: no-op */
+    assert_non_null(ps.f[RY_F_E]);
+    assert_null(ps.f[RY_F_H]);
+    assert_int_equal(ry_particles_bytes_per_particle(&ps), before + 8);
+    for (size_t i = 0; i < ps.n; ++i) {
+        assert_true(ps.f[RY_F_E][i] == 0.0);
+        ps.f[RY_F_E][i] = 3.0 * (double)ps.id[i];
+    }
+    fill(&ps, 2000); /* growth */
+    uint32_t *order = malloc(ps.n * sizeof *order);
+    for (size_t i = 0; i < ps.n; ++i) order[i] = (uint32_t)(ps.n - 1 - i);
+    assert_int_equal(ry_particles_permute(&ps, order, &err), RY_OK);
+    for (size_t i = 0; i < ps.n; ++i) {
+        const int64_t id = ps.id[i];
+        assert_true(ps.f[RY_F_E][i] == (id < 50 ? 3.0 * (double)id : 0.0));
+    }
+    assert_null(ps.f[RY_F_H]);
     free(order);
     ry_particles_free(&ps);
 }
@@ -218,6 +252,7 @@ int main(void) {
         cmocka_unit_test(test_dimension_fields),
         cmocka_unit_test(test_growth_keeps_data),
         cmocka_unit_test(test_extra_field_follows),
+        cmocka_unit_test(test_field_on_request),
         cmocka_unit_test(test_remove_keeps_order),
         cmocka_unit_test(test_kind_names),
         cmocka_unit_test(test_shape_moment),

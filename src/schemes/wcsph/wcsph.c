@@ -191,10 +191,16 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     if (w->tvf)
         for (size_t i = 0; i < ps->n; ++i)
             for (int d = 0; d < sim->dim; ++d) ps->f[w->f_vt[d]][i] = ps->f[RY_F_VX + d][i];
-    /* Initial pressure from the density (zero for a fluid at rest at rho0); energy for gases. */
-    for (size_t i = 0; i < ps->n; ++i) {
-        ps->f[RY_F_E][i] = 0;
-        ps->f[RY_F_P][i] = 0;
+    /* Initial pressure from the density (zero for a fluid at rest at rho0); energy for gases;
+     * the smoothing length where it varies. */
+    for (size_t i = 0; i < ps->n; ++i) ps->f[RY_F_P][i] = 0;
+    if (w->energy) {
+        RY_TRY(ry_particles_use_field(ps, RY_F_E, err));
+        RY_TRY(ry_particles_use_field(ps, RY_F_DE, err));
+    }
+    if (w->variable_h) {
+        RY_TRY(ry_particles_use_field(ps, RY_F_H, err));
+        for (size_t i = 0; i < ps->n; ++i) ps->f[RY_F_H][i] = sim->kernel.h;
     }
     int hydro;
     RY_TRY(ry_case_bool(c, "scheme.hydrostatic_init", &no, &hydro, err));

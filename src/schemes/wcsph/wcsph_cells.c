@@ -331,9 +331,9 @@ void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     c.kind = ps->kind;
     c.rng = w->rng;
     c.fs = w->fpack_stride;
-    c.fk = (const float *)((const double *)w->fpack + 3 * c.fs);
+    c.fk = w->fpack;
     for (int d = 0; d < 3; ++d) {
-        c.x[d] = (const double *)w->fpack + (size_t)d * c.fs;
+        c.x[d] = ps->f[RY_F_X + (d < sim->dim ? d : 0)];
         c.v[d] = ps->f[RY_F_VX + (d < sim->dim ? d : 0)];
         c.a[d] = ps->f[RY_F_AX + d];
         c.g[d] = d < sim->dim ? sim->gravity[d] : 0.0;
@@ -388,15 +388,12 @@ void wc_fpack_fluid(ry_sim *sim, const wcsph *w) {
     double *restrict p = ps->f[RY_F_P];
     const double *restrict m = ps->f[RY_F_MASS];
     const ry_material *mat = sim->mat;
-    double *restrict xp = w->fpack;
-    float *restrict fk = (float *)(xp + 3 * fs);
-    const double *x[3], *v[3];
-    ry_particles_coords(ps, x);
+    float *restrict fk = w->fpack;
+    const double *v[3];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         for (int d = 0; d < dim; ++d) {
-            xp[(size_t)d * fs + i] = x[d][i];
             /* walls: rewritten by the wall pass */
             fk[(FK_U + d) * fs + i] = fk[(FK_UG + d) * fs + i] = (float)v[d][i];
         }
@@ -405,7 +402,7 @@ void wc_fpack_fluid(ry_sim *sim, const wcsph *w) {
             for (int k = FK_DRHO; k < FK_COUNT; ++k) fk[(size_t)k * fs + i] = 0.0f;
             continue;
         }
-        if (kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, matl[i], rho[i], e[i]);
+        if (kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, matl[i], rho[i], e ? e[i] : 0.0);
         const double inv_rho = 1.0 / rho[i];
         fk[FK_DRHO * fs + i] = (float)(rho[i] - rho_ref);
         fk[FK_PRHO2 * fs + i] = (float)(p[i] * inv_rho * inv_rho);
@@ -427,8 +424,7 @@ static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w) {
     const uint8_t *restrict kind = ps->kind;
     const double *restrict rho = ps->f[RY_F_RHO], *restrict m = ps->f[RY_F_MASS];
     double *restrict p = ps->f[RY_F_P];
-    double *restrict xp = w->fpack;
-    float *restrict fk = (float *)(xp + 3 * fs);
+    float *restrict fk = w->fpack;
     const double rho0 = w->rho0m[0], B = w->Bm[0], pb = w->p_background;
     const double c02 = w->c0 * w->c0;
     const int tait7 = w->eos == EOS_TAIT && w->gamma == 7.0, linear = w->eos == EOS_LINEAR;
@@ -436,12 +432,10 @@ static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w) {
 #pragma omp parallel
     {
         for (int d = 0; d < dim; ++d) {
-            const double *restrict x = ps->f[RY_F_X + d], *restrict v = ps->f[RY_F_VX + d];
-            double *restrict xd = xp + (size_t)d * fs;
+            const double *restrict v = ps->f[RY_F_VX + d];
             float *restrict u = fk + (FK_U + d) * fs, *restrict ug = fk + (FK_UG + d) * fs;
 #pragma omp for schedule(static) nowait
             for (size_t i = 0; i < n; ++i) {
-                xd[i] = x[i];
                 u[i] = ug[i] = (float)v[i]; /* walls: rewritten by the wall pass */
             }
         }

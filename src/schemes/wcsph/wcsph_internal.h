@@ -33,9 +33,9 @@ typedef struct wcsph {
     size_t pack_cap;
     double *scratch; /* per thread: the in-range neighbours of one particle, field by field */
     size_t scratch_cap;
-    int fast;    /* the cell-range pair loop in single precision (scheme.pair_loop) */
-    void *fpack; /* its per-particle data: positions (3 arrays of fpack_stride doubles), then
-                    FK_COUNT arrays of fpack_stride floats; padded, 64-byte aligned */
+    int fast;     /* the cell-range pair loop in single precision (scheme.pair_loop) */
+    float *fpack; /* its per-particle data: FK_COUNT arrays of fpack_stride floats, padded,
+                     64-byte aligned (the positions are the particles' own, padded in place) */
     size_t fpack_stride, fpack_cap;
     uint32_t *rng; /* candidate ranges per particle: 3 (2D) or 9 (3D) pairs [a, b) */
     size_t rng_cap;
@@ -189,12 +189,10 @@ static inline double wall_repulsion(double r2, int on, double r02, double D) {
 static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double mui, double visi) {
     const ry_particles *ps = &sim->ps;
     const size_t fs = w->fpack_stride;
-    double *restrict XP = (double *)w->fpack + i;
-    float *restrict F = (float *)((double *)w->fpack + 3 * fs) + i;
+    float *restrict F = w->fpack + i;
     const double rhoi = ps->f[RY_F_RHO][i], inv_rho = 1.0 / rhoi, pi = ps->f[RY_F_P][i];
     const double mi = ps->f[RY_F_MASS][i];
     for (int d = 0; d < sim->dim; ++d) {
-        XP[d * fs] = ps->f[RY_F_X + d][i];
         F[(FK_U + d) * fs] = (float)ps->f[RY_F_VX + d][i];
         F[(FK_UG + d) * fs] = (float)ps->f[w->f_vg[d]][i];
     }

@@ -35,18 +35,19 @@ ry_status wc_prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
     if (w->fast) {
         const size_t fs = (n + 8 + 15) & ~(size_t)15; /* room for a last vector */
         if (w->fpack_cap < fs) {
-            /* Positions (3 x fs doubles) then the FK_COUNT float fields, 64-byte aligned. */
+            /* The FK_COUNT float fields, 64-byte aligned. */
             free(w->fpack);
-            w->fpack = aligned_alloc(64, fs * (3 * sizeof(double) + FK_COUNT * sizeof(float)));
+            w->fpack = aligned_alloc(64, fs * FK_COUNT * sizeof(float));
             w->fpack_cap = w->fpack ? fs : 0;
             RY_CHECK(err, w->fpack != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
         }
         w->fpack_stride = fs;
-        /* Padding: far away and inert. */
-        double *xp = w->fpack;
-        float *fk = (float *)(xp + 3 * fs);
-        for (int d = 0; d < 3; ++d)
-            for (size_t i = n; i < fs; ++i) xp[d * fs + i] = 1e10;
+        /* Padding: far away and inert. The positions are read in place: the particle arrays
+         * hold the padding after the last particle. */
+        RY_TRY(ry_particles_reserve(ps, fs, err));
+        float *fk = w->fpack;
+        for (int d = 0; d < dim; ++d)
+            for (size_t i = n; i < fs; ++i) ps->f[RY_F_X + d][i] = 1e10;
         for (int k = 0; k < FK_COUNT; ++k)
             for (size_t i = n; i < fs; ++i) fk[k * fs + i] = 0.0f;
         wc_fpack_fluid(sim, w);
@@ -100,7 +101,7 @@ ry_status wc_prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
         S[PK_MASS] = m[i];
         S[PK_FLUID] = fluid || kind[i] == RY_KIND_OUTLET ? 1.0 : 0.0;
         S[PK_VISC] = visi;
-        S[PK_H] = hh[i];
+        S[PK_H] = hh ? hh[i] : sim->kernel.h; /* (the field exists with variable h) */
     }
     return RY_OK;
 }

@@ -164,7 +164,7 @@ size_t wc_bytes(const void *state) {
     const size_t nr = w->rng_cap * (2 * (size_t)w->nrange * sizeof(uint32_t) + 1);
     return w->pack_cap * PK_STRIDE(3) * sizeof(double) +
            w->scratch_cap * (SC_COUNT + 1) * sizeof(double) +
-           w->fpack_cap * (3 * sizeof(double) + FK_COUNT * sizeof(float)) + nr;
+           w->fpack_cap * FK_COUNT * sizeof(float) + nr;
 }
 
 /* Evaluates all rates at the current (predicted) state. */
@@ -188,7 +188,8 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     if (!w->fast) {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; ++i)
-            if (ps->kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, ps->material[i], rho[i], e[i]);
+            if (ps->kind[i] == RY_KIND_FLUID)
+                p[i] = eos_pressure(w, ps->material[i], rho[i], e ? e[i] : 0.0);
     }
     if (ry_st_pressure_form(&w->st)) RY_TRY(st_laplace(sim, w, err));
     if (w->fast) {

@@ -75,7 +75,7 @@ static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
     const uint8_t *restrict kind = ps->kind;
     const double *restrict rho = ps->f[RY_F_RHO], *restrict m = ps->f[RY_F_MASS];
     const double *restrict p = ps->f[RY_F_P];
-    float *restrict fk = (float *)((double *)w->fpack + 3 * fs);
+    float *restrict fk = w->fpack;
     const double rho0 = w->rho0m[0], nu = w->laminar ? sim->mat[0].viscosity : 0.0;
     const float visc = w->wall == WALL_NO_SLIP ? 1.0f : 0.0f;
 #pragma omp parallel
@@ -115,8 +115,9 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
     const int nrange = dim > 2 ? 9 : 3;
     const uint32_t *restrict rg = w->rng + i * 2 * (size_t)nrange;
     const size_t fs = w->fpack_stride;
-    const double *restrict x0 = w->fpack, *restrict x1 = x0 + fs, *restrict x2 = x0 + 2 * fs;
-    const float *restrict fk = (const float *)(x0 + 3 * fs);
+    const double *restrict x0 = sim->ps.f[RY_F_X], *restrict x1 = sim->ps.f[RY_F_Y];
+    const double *restrict x2 = dim > 2 ? sim->ps.f[RY_F_Z] : x0;
+    const float *restrict fk = w->fpack;
     const double xi = x0[i], yi = x1[i], zi = dim > 2 ? x2[i] : 0.0;
     const float rad2 = (float)(k->radius * k->radius), inv_h = (float)k->inv_h;
     const float gx = (float)sim->gravity[0], gy = (float)sim->gravity[1];
