@@ -42,10 +42,14 @@ RY_HD static inline void ry_adami_add_velocity(ry_adami_sums *s, double w, const
                                                int dim) {
     for (int d = 0; d < dim; ++d) s->sv[d] += v_f[d] * w;
 }
-RY_HD static inline void ry_adami_add_weight(ry_adami_sums *s, double w) { s->sw += w; }
+RY_HD static inline void ry_adami_add_weight(ry_adami_sums *s, double w) {
+    s->sw += w;
+}
 
 /* The wall pressure of eq. 27 (s->sw > 0). */
-RY_HD static inline double ry_adami_pressure(const ry_adami_sums *s) { return s->sp / s->sw; }
+RY_HD static inline double ry_adami_pressure(const ry_adami_sums *s) {
+    return s->sp / s->sw;
+}
 
 /* Component d of the ghost velocity of eq. 22-23, 2 v_w - v~_w, from the wall's own velocity
  * v_w (s->sw > 0). */

@@ -249,14 +249,10 @@ static void test_shape_moment_isotropic(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_dimension_fields),
-        cmocka_unit_test(test_growth_keeps_data),
-        cmocka_unit_test(test_extra_field_follows),
-        cmocka_unit_test(test_field_on_request),
-        cmocka_unit_test(test_remove_keeps_order),
-        cmocka_unit_test(test_kind_names),
-        cmocka_unit_test(test_shape_moment),
-        cmocka_unit_test(test_shape_moment_isotropic),
+        cmocka_unit_test(test_dimension_fields),    cmocka_unit_test(test_growth_keeps_data),
+        cmocka_unit_test(test_extra_field_follows), cmocka_unit_test(test_field_on_request),
+        cmocka_unit_test(test_remove_keeps_order),  cmocka_unit_test(test_kind_names),
+        cmocka_unit_test(test_shape_moment),        cmocka_unit_test(test_shape_moment_isotropic),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
