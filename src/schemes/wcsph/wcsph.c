@@ -155,7 +155,9 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     static const char *const vg[3] = {"vwall_x", "vwall_y", "vwall_z"};
     for (int d = 0; d < 3; ++d) {
         RY_TRY(ry_particles_add_field(ps, vh[d], "m/s", d, RY_FIELD_STATE, &w->f_vh[d], err));
-        RY_TRY(ry_particles_add_field(ps, vg[d], "m/s", d, 0, &w->f_vg[d], err));
+        /* (the cell-range loop keeps the walls' ghost velocities in its records) */
+        w->f_vg[d] = -1;
+        if (!w->fast) RY_TRY(ry_particles_add_field(ps, vg[d], "m/s", d, 0, &w->f_vg[d], err));
     }
     if (w->tvf) {
         static const char *const vt[3] = {"vtransport_x", "vtransport_y", "vtransport_z"};

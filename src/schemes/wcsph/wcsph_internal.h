@@ -185,7 +185,7 @@ static inline double wall_repulsion(double r2, int on, double r02, double D) {
 }
 
 /* The single-precision record of particle i for the cell-range loop (mu_i and the viscous
- * coupling as computed by wc_prepare_pairs). */
+ * coupling as computed by wc_prepare_pairs; the ghost velocity is the wall pass's). */
 static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double mui, double visi) {
     const ry_particles *ps = &sim->ps;
     const size_t fs = w->fpack_stride;
@@ -194,7 +194,6 @@ static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double
     const double mi = ps->f[RY_F_MASS][i];
     for (int d = 0; d < sim->dim; ++d) {
         F[(FK_U + d) * fs] = (float)ps->f[RY_F_VX + d][i];
-        F[(FK_UG + d) * fs] = (float)ps->f[w->f_vg[d]][i];
     }
     F[FK_DRHO * fs] = (float)(rhoi - w->rho0m[0]);
     F[FK_PRHO2 * fs] = (float)(pi * inv_rho * inv_rho);

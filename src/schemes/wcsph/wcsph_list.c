@@ -82,10 +82,6 @@ ry_status wc_prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
         /* Velocity seen by viscous terms: the ghost velocity on no-slip walls. */
         if (!wall || !noslip)
             for (int d = 0; d < dim; ++d) vg[d][i] = v[d][i];
-        if (w->fast) {
-            fpack_one(sim, w, i, mui, visi);
-            continue;
-        }
         double *restrict P = pack + i * stride;
         for (int d = 0; d < dim; ++d) {
             P[PK_X(dim) + d] = x[d][i];

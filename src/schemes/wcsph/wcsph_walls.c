@@ -35,8 +35,10 @@ static inline __attribute__((always_inline)) void wall_sums_list(const ry_sim *s
     }
 }
 
-/* Pressure, density and ghost velocity of wall (and inlet) particle i from its sums. */
-static inline void wall_set(ry_sim *sim, const wcsph *w, size_t i, const ry_adami_sums *s) {
+/* Pressure and density of wall (and inlet) particle i from its sums, and its ghost velocity
+ * into vg. */
+static inline void wall_set(ry_sim *sim, const wcsph *w, size_t i, const ry_adami_sums *s,
+                            double vg[3]) {
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim, inlet = ps->kind[i] == RY_KIND_INLET;
     const int mat = ps->material[i];
@@ -46,12 +48,12 @@ static inline void wall_set(ry_sim *sim, const wcsph *w, size_t i, const ry_adam
         ps->f[RY_F_RHO][i] = eos_density(w, mat, pw);
         for (int d = 0; d < dim; ++d) {
             const double vw = ps->f[RY_F_VX + d][i];
-            ps->f[w->f_vg[d]][i] = inlet ? vw : ry_adami_ghost_velocity(s, d, vw);
+            vg[d] = inlet ? vw : ry_adami_ghost_velocity(s, d, vw);
         }
     } else {
         ps->f[RY_F_P][i] = w->p_background;
         ps->f[RY_F_RHO][i] = w->rho0m[mat];
-        for (int d = 0; d < dim; ++d) ps->f[w->f_vg[d]][i] = ps->f[RY_F_VX + d][i];
+        for (int d = 0; d < dim; ++d) vg[d] = ps->f[RY_F_VX + d][i];
     }
 }
 
@@ -62,16 +64,18 @@ void wc_wall_pass(ry_sim *sim, const wcsph *w) {
         if (!wall_like(&sim->ps, i)) continue;
         ry_adami_sums s = {0, 0, {0, 0, 0}};
         wall_sums_list(sim, i, &s);
-        wall_set(sim, w, i, &s);
+        double vg[3];
+        wall_set(sim, w, i, &s, vg);
+        for (int d = 0; d < sim->dim; ++d) sim->ps.f[w->f_vg[d]][i] = vg[d];
     }
 }
 
 /* The walls' records after the wall pass (fpack_one for each wall), for uniform materials:
- * one pass per array, the other particles' entries kept. */
+ * one pass per array, the other particles' entries kept (the ghost velocities are written by
+ * the wall pass itself). */
 static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n, fs = w->fpack_stride;
-    const int dim = sim->dim;
     const uint8_t *restrict kind = ps->kind;
     const double *restrict rho = ps->f[RY_F_RHO], *restrict m = ps->f[RY_F_MASS];
     const double *restrict p = ps->f[RY_F_P];
@@ -80,12 +84,6 @@ static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
     const float visc = w->wall == WALL_NO_SLIP ? 1.0f : 0.0f;
 #pragma omp parallel
     {
-        for (int d = 0; d < dim; ++d) {
-            const double *restrict vg = ps->f[w->f_vg[d]];
-            float *restrict ug = fk + (FK_UG + d) * fs;
-#pragma omp for schedule(static) nowait
-            for (size_t i = 0; i < n; ++i) ug[i] = kind[i] == RY_KIND_WALL ? (float)vg[i] : ug[i];
-        }
         float *restrict fdr = fk + FK_DRHO * fs, *restrict fpr = fk + FK_PRHO2 * fs;
         float *restrict fvol = fk + FK_VOL * fs, *restrict fmu = fk + FK_MU * fs;
         float *restrict fm = fk + FK_MASS * fs, *restrict fvi = fk + FK_VISC * fs;
@@ -161,7 +159,10 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
             if (!wall_like(&sim->ps, i)) continue;                                                 \
             ry_adami_sums s = {0, 0, {0, 0, 0}};                                                   \
             if (w->wet[i]) wall_sums_ranges(sim, w, i, DIM, KT, &s);                               \
-            wall_set(sim, w, i, &s);                                                               \
+            double vg[3];                                                                          \
+            wall_set(sim, w, i, &s, vg);                                                           \
+            for (int d = 0; d < DIM; ++d)                                                          \
+                w->fpack[(FK_UG + d) * w->fpack_stride + i] = (float)vg[d];                        \
         }                                                                                          \
         /* The walls' records, once no thread reads them any more. */                              \
         if (wc_uniform_materials(sim, w)) {                                                        \
