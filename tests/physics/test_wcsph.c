@@ -17,6 +17,7 @@
 #define RY_TMPDIR_PREFIX "ryushi_wcsph_"
 #include "run_case.h"
 #include "ryushi/run.h"
+#include "schemes/wcsph/wcsph_internal.h"
 
 static void path(char *buf, size_t size, const char *rel) {
     snprintf(buf, size, "%s/%s", root, rel);
@@ -175,6 +176,71 @@ static void test_pair_loops_agree(void **state) {
     }
 }
 
+/* The cell-range loop's traversal against brute force, after a run (particles have moved since
+ * the last search, by less than half the skin): every pair within the support of a fluid
+ * particle, and every fluid neighbour of a wall particle whose pass runs, lies in exactly one of
+ * the particle's candidate ranges; so does every pair within support + skin at the positions of
+ * the last search (what the ranges are built for, the stricter of the two); the ranges are
+ * ordered and disjoint (no pair counted twice); a wall particle whose pass is skipped has no
+ * fluid in reach. 2D seed dam break with the cubic spline (3 rows) and the 3D dam break with
+ * Wendland C2 (9 rows). */
+static void check_ranges(const ry_sim *sim) {
+    const wcsph *w = sim->scheme_state;
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim, nrange = dim > 2 ? 9 : 3;
+    assert_true(w->fast);
+    assert_int_equal(w->rng_gen, sim->nl_generation);
+    const double rad2 = sim->nl_radius * sim->nl_radius;
+    const double reach = sim->nl_radius * (1.0 + sim->nl_skin), reach2 = reach * reach;
+    size_t pairs = 0, pairs_then = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        const int fluid = ps->kind[i] == RY_KIND_FLUID, wall = ps->kind[i] == RY_KIND_WALL;
+        if (!fluid && !wall) continue;
+        const uint32_t *rg = w->rng + i * 2 * (size_t)nrange;
+        for (int r = 0; r + 1 < nrange; ++r)
+            if (rg[2 * r + 3] > rg[2 * r + 2]) assert_true(rg[2 * r + 1] <= rg[2 * r + 2]);
+        for (size_t j = 0; j < ps->n; ++j) {
+            if (j == i || (wall && ps->kind[j] != RY_KIND_FLUID)) continue;
+            double r2 = 0, r2then = 0;
+            for (int d = 0; d < dim; ++d) {
+                const double dx = ps->f[RY_F_X + d][i] - ps->f[RY_F_X + d][j];
+                const double dr = ps->f[sim->f_xref + d][i] - ps->f[sim->f_xref + d][j];
+                r2 += dx * dx;
+                r2then += dr * dr;
+            }
+            if (r2 >= rad2 && r2then >= reach2) continue;
+            if (wall) assert_true(w->wet[i]); /* a skipped wall has no fluid near */
+            int found = 0;
+            for (int r = 0; r < nrange; ++r) found += j >= rg[2 * r] && j < rg[2 * r + 1];
+            assert_int_equal(found, 1);
+            pairs += r2 < rad2;
+            pairs_then += r2then < reach2;
+        }
+    }
+    printf("cell ranges: %zu pairs within the support now, %zu within reach at the search, each "
+           "found once (%zu particles)\n",
+           pairs, pairs_then, ps->n);
+    assert_true(pairs > 10 * ps->n / 2 && pairs_then > pairs);
+}
+
+static void test_cell_ranges_brute_force(void **state) {
+    (void)state;
+    const char *d2[] = {"spacing=0.0125", "time.max_steps=150", "output.vtk=false",
+                        "scheme.pair_loop=cells", "kernel.type=cubic"};
+    const char *d3[] = {"spacing=0.025", "time.max_steps=60", "output.vtk=false",
+                        "scheme.pair_loop=cells"};
+    ry_table s2, s3;
+    ry_sim a, b;
+    run("cases/dam_break_seed.yaml", "ranges2", 5, d2, &s2, &a);
+    check_ranges(&a);
+    run("cases/dam_break_3d.yaml", "ranges3", 4, d3, &s3, &b);
+    check_ranges(&b);
+    ry_sim_free(&a);
+    ry_sim_free(&b);
+    ry_table_free(&s2);
+    ry_table_free(&s3);
+}
+
 /* The seed's Re = 1 cavity settles: the mean kinetic energy over the second half of the last
  * 40 % of one viscous time differs from that over the first half by less than 3 %, and no
  * fluid speed exceeds the lid's. */
@@ -254,6 +320,7 @@ int main(void) {
         cmocka_unit_test(test_hydrostatic_tank),
         cmocka_unit_test(test_threads_bitwise),
         cmocka_unit_test(test_pair_loops_agree),
+        cmocka_unit_test(test_cell_ranges_brute_force),
         cmocka_unit_test(test_cavity_re1_steady),
         cmocka_unit_test(test_cavity_re100_ghia),
         cmocka_unit_test(test_free_surface_tension),
