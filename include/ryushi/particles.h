@@ -42,7 +42,10 @@ enum {
     RY_FIELD_OUTPUT = 2, /* written to VTK output by default */
     /* no array (f[k] NULL) until a scheme asks for it (ry_particles_use_field): a variable
      * smoothing length, the energy equation */
-    RY_FIELD_ON_REQUEST = 4
+    RY_FIELD_ON_REQUEST = 4,
+    /* rewritten within every step before it is read (a half-step value): neither checkpointed
+     * nor kept in the guard's last good state */
+    RY_FIELD_SCRATCH = 8
 };
 
 typedef enum ry_field_id {

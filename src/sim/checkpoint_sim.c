@@ -17,6 +17,12 @@
 
 enum { MAX_VARS = 64 };
 
+/* Whether field f is checkpointed and kept in the last good state: allocated, and not scratch
+ * (rewritten within every step before it is read). */
+static int kept(const ry_particles *ps, int f) {
+    return ps->f[f] && !(ps->info[f].flags & RY_FIELD_SCRATCH);
+}
+
 static int scheme_vars(const ry_sim *sim, ry_state_var *vars) {
     if (!sim->scheme || !sim->scheme->state_vars) return 0;
     return sim->scheme->state_vars(sim->scheme_state, vars, MAX_VARS);
@@ -98,7 +104,7 @@ static ry_status put_sim(const ry_sim *sim, ry_ck_writer *w, ry_error *err) {
     RY_TRY(ry_ck_put(w, "particles/kind", RY_CK_U8, ps->kind, ps->n, err));
     RY_TRY(ry_ck_put(w, "particles/material", RY_CK_U8, ps->material, ps->n, err));
     for (int f = 0; f < ps->nfields; ++f) {
-        if (!ps->f[f]) continue;
+        if (!kept(ps, f)) continue;
         char k[300];
         snprintf(k, sizeof k, "field/%s", ps->info[f].name);
         RY_TRY(ry_ck_put(w, k, RY_CK_F64, ps->f[f], ps->n, err));
@@ -170,7 +176,7 @@ ry_status ry_sim_checkpoint_load(ry_sim *sim, const ry_ck_reader *r, ry_error *e
              "checkpoint %s: record 'particles/n': bad count %lld", r->path, (long long)n);
     /* Every field of the set must be there with n values: check before changing anything. */
     for (int f = 0; f < ps->nfields; ++f) {
-        if (!ps->f[f]) continue;
+        if (!kept(ps, f)) continue;
         char k[300];
         snprintf(k, sizeof k, "field/%s", ps->info[f].name);
         const ry_ck_record *rec = ry_ck_find(r, k);
@@ -191,7 +197,7 @@ ry_status ry_sim_checkpoint_load(ry_sim *sim, const ry_ck_reader *r, ry_error *e
                  "checkpoint %s: particle %zu has an unknown kind or material", r->path, i);
     RY_TRY(ry_ck_get_i64(r, "particles/next_id", &ps->next_id, err));
     for (int f = 0; f < ps->nfields; ++f) {
-        if (!ps->f[f]) continue;
+        if (!kept(ps, f)) continue;
         char k[300];
         snprintf(k, sizeof k, "field/%s", ps->info[f].name);
         RY_TRY(ry_ck_get(r, k, RY_CK_F64, ps->n, ps->f[f], err));
@@ -422,7 +428,7 @@ ry_status ry_sim_snapshot_take(ry_sim *sim, ry_error *err) {
     if (s->cap < ps->n) {
         size_t cap = ps->n + ps->n / 8 + 16;
         for (int f = 0; f < ps->nfields; ++f) {
-            if (!ps->f[f]) continue;
+            if (!kept(ps, f)) continue;
             double *p = realloc(s->f[f], cap * sizeof *p);
             RY_CHECK(err, p != NULL, RY_ERR_NOMEM, "out of memory (snapshot)");
             s->f[f] = p;
@@ -437,7 +443,7 @@ ry_status ry_sim_snapshot_take(ry_sim *sim, ry_error *err) {
     }
     s->n = ps->n;
     for (int f = 0; f < ps->nfields; ++f)
-        if (ps->f[f]) memcpy(s->f[f], ps->f[f], ps->n * sizeof(double));
+        if (kept(ps, f)) memcpy(s->f[f], ps->f[f], ps->n * sizeof(double));
     memcpy(s->id, ps->id, ps->n * sizeof *ps->id);
     memcpy(s->kind, ps->kind, ps->n);
     memcpy(s->material, ps->material, ps->n);
@@ -465,7 +471,7 @@ ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_er
     }
     ps->n = s->n;
     for (int f = 0; f < ps->nfields; ++f)
-        if (ps->f[f]) memcpy(ps->f[f], s->f[f], ps->n * sizeof(double));
+        if (kept(ps, f)) memcpy(ps->f[f], s->f[f], ps->n * sizeof(double));
     memcpy(ps->id, s->id, ps->n * sizeof *ps->id);
     memcpy(ps->kind, s->kind, ps->n);
     memcpy(ps->material, s->material, ps->n);

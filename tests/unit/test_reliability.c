@@ -96,7 +96,7 @@ static void test_fluid_leaving_the_domain(void **state) {
 }
 
 /* A checkpoint of the dam break, written and read back into a fresh set-up: every particle
- * array and the clock come back exactly. */
+ * array but the scratch ones and the clock come back exactly. */
 static void test_checkpoint_round_trip(void **state) {
     (void)state;
     ry_sim a, b;
@@ -114,8 +114,10 @@ static void test_checkpoint_round_trip(void **state) {
     assert_int_equal(b.ps.n, a.ps.n);
     assert_int_equal(b.step, a.step);
     assert_true(b.t == a.t);
+    /* every field but the scratch ones (rewritten within each step before they are read) */
     for (int f = 0; f < a.ps.nfields; ++f)
-        if (a.ps.f[f]) assert_memory_equal(a.ps.f[f], b.ps.f[f], a.ps.n * sizeof(double));
+        if (a.ps.f[f] && !(a.ps.info[f].flags & RY_FIELD_SCRATCH))
+            assert_memory_equal(a.ps.f[f], b.ps.f[f], a.ps.n * sizeof(double));
     assert_memory_equal(a.ps.id, b.ps.id, a.ps.n * sizeof *a.ps.id);
     ry_sim_free(&a);
     ry_sim_free(&b);

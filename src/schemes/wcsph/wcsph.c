@@ -154,7 +154,7 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     static const char *const vh[3] = {"vhalf_x", "vhalf_y", "vhalf_z"};
     static const char *const vg[3] = {"vwall_x", "vwall_y", "vwall_z"};
     for (int d = 0; d < 3; ++d) {
-        RY_TRY(ry_particles_add_field(ps, vh[d], "m/s", d, RY_FIELD_STATE, &w->f_vh[d], err));
+        RY_TRY(ry_particles_add_field(ps, vh[d], "m/s", d, RY_FIELD_SCRATCH, &w->f_vh[d], err));
         /* (the cell-range loop keeps the walls' ghost velocities in its records) */
         w->f_vg[d] = -1;
         if (!w->fast) RY_TRY(ry_particles_add_field(ps, vg[d], "m/s", d, 0, &w->f_vg[d], err));
@@ -168,14 +168,14 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
                 ry_particles_add_field(ps, ab[d], "m/s^2", d, RY_FIELD_STATE, &w->f_abg[d], err));
         }
     }
-    RY_TRY(
-        ry_particles_add_field(ps, "density_half", "kg/m^3", -1, RY_FIELD_STATE, &w->f_rhoh, err));
+    RY_TRY(ry_particles_add_field(ps, "density_half", "kg/m^3", -1, RY_FIELD_SCRATCH, &w->f_rhoh,
+                                  err));
     w->f_eh = w->f_hh = -1; /* (only where they are integrated) */
     if (w->energy)
         RY_TRY(
-            ry_particles_add_field(ps, "energy_half", "J/kg", -1, RY_FIELD_STATE, &w->f_eh, err));
+            ry_particles_add_field(ps, "energy_half", "J/kg", -1, RY_FIELD_SCRATCH, &w->f_eh, err));
     if (w->variable_h)
-        RY_TRY(ry_particles_add_field(ps, "h_half", "m", -1, RY_FIELD_STATE, &w->f_hh, err));
+        RY_TRY(ry_particles_add_field(ps, "h_half", "m", -1, RY_FIELD_SCRATCH, &w->f_hh, err));
     if (w->tvf) { /* per-evaluation quantities the transport-velocity pair loop reads */
         RY_TRY(ry_particles_add_field(ps, "volume", "m^3", -1, 0, &w->f_vol, err));
         RY_TRY(ry_particles_add_field(ps, "dynamic_viscosity", "Pa s", -1, 0, &w->f_mu, err));
