@@ -38,7 +38,10 @@
     X(RY_F_DE, "energy_rate", "W/kg", -1, RY_FIELD_ON_REQUEST)
 
 enum {
-    RY_FIELD_STATE = 1,  /* part of the state: checkpointed (others are recomputed each step) */
+    /* part of the physical state (a label: checkpoints and the last good state hold every
+     * field but the RY_FIELD_SCRATCH ones, since a step may read a derived field such as the
+     * acceleration before it recomputes it) */
+    RY_FIELD_STATE = 1,
     RY_FIELD_OUTPUT = 2, /* written to VTK output by default */
     /* no array (f[k] NULL) until a scheme asks for it (ry_particles_use_field): a variable
      * smoothing length, the energy equation */

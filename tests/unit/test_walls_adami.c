@@ -118,20 +118,15 @@ static void check_case(int dim, weight_fn wf, const void *ctx) {
     }
 }
 
-static void test_kernel_2d(void **state) {
+/* The SPH kernel's weights in 2D and 3D. */
+static void test_kernel(void **state) {
     (void)state;
-    ry_kernel k;
-    ry_error err;
-    assert_int_equal(ry_kernel_init(&k, RY_KERNEL_WENDLAND_C2, 2, 1.3 * dx, &err), RY_OK);
-    check_case(2, weight_kernel, &k);
-}
-
-static void test_kernel_3d(void **state) {
-    (void)state;
-    ry_kernel k;
-    ry_error err;
-    assert_int_equal(ry_kernel_init(&k, RY_KERNEL_WENDLAND_C2, 3, 1.3 * dx, &err), RY_OK);
-    check_case(3, weight_kernel, &k);
+    for (int dim = 2; dim <= 3; ++dim) {
+        ry_kernel k;
+        ry_error err;
+        assert_int_equal(ry_kernel_init(&k, RY_KERNEL_WENDLAND_C2, dim, 1.3 * dx, &err), RY_OK);
+        check_case(dim, weight_kernel, &k);
+    }
 }
 
 static void test_mps_weight_2d(void **state) {
@@ -160,8 +155,7 @@ static void test_weight_only(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_kernel_2d),
-        cmocka_unit_test(test_kernel_3d),
+        cmocka_unit_test(test_kernel),
         cmocka_unit_test(test_mps_weight_2d),
         cmocka_unit_test(test_weight_only),
     };
