@@ -25,7 +25,7 @@ trap 'rm -rf "$WORK"' EXIT
 
 # label | case file | --set arguments (steps bounded so that the whole set runs in minutes)
 LIST='
-dam_list|dam_break_seed|spacing=0.0125 time.end=0.12 time.output_interval=0.04
+dam_list|dam_break_seed|spacing=0.0125 time.end=0.12 time.output_interval=0.04 scheme.pair_loop=list
 dam_cells|dam_break_seed|spacing=0.0125 time.end=0.12 time.output_interval=0.04 scheme.pair_loop=cells
 dam_3d|dam_break_3d|time.max_steps=20
 cavity|cavity_seed|time.max_steps=300

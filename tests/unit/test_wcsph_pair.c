@@ -17,7 +17,14 @@
  *               x_ij . grad_i W / (r^2 + eta^2),
  * and the same for j with i and j exchanged.
  * Tolerances: the list loop 1e-12 of each quantity's scale (a few roundings of double
- * precision); the cell loop 2e-6 (single precision, 2^-24 = 6e-8, over some 20 operations). */
+ * precision); the cell loop 2e-6 (single precision, 2^-24 = 6e-8, over some 20 operations).
+ *
+ * The pair function itself (src/schemes/wcsph/wcsph_pair.h), in double and single precision,
+ * is also checked alone in 3D on the terms the two-particle runs do not reach: the energy rate,
+ * the hydrostatic term of Fourtakas et al. (2019), different sound speeds, a wall neighbour
+ * (its ghost velocity, viscous factor and the fluid's viscosity) and the wall repulsion of
+ * Monaghan (1994), with its cap on (r0/r)^2 at 1e3. The kernel factor fw = (dW/dr)/r is an
+ * input of the pair function (the traversal's); any value serves. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp (tmpdir.h) */
 #include <math.h>
 #include <setjmp.h>
@@ -32,6 +39,7 @@
 #define RY_TMPDIR_PREFIX "ryushi_pair_"
 #include "tmpdir.h"
 #include "ryushi/run.h"
+#include "schemes/wcsph/wcsph_pair.h"
 
 #define PI 3.14159265358979323846
 
@@ -120,6 +128,152 @@ static void check_loop(const char *loop, double tol) {
     ry_case_free(c);
 }
 
+/* One pair in 3D by hand: particle i and neighbour j (fluid or wall, with the velocity that
+ * viscous terms see ug), x_ij, the kernel factor fw; the rates a[3], div, diff and de as
+ * wcsph_pair.h defines them. */
+typedef struct hand_pair {
+    double ui[3], uj[3], ugj[3], rhoi, rhoj, pi, pj, mui, muj, ci, cj, mj, fluid, visc;
+    double x[3], fw, h, alpha, beta, g[3], rho0, c0, rep_d, rep_r0;
+} hand_pair;
+
+static void pair_by_hand(const hand_pair *P, double a[3], double *div, double *diff, double *de) {
+    const double r2 = P->x[0] * P->x[0] + P->x[1] * P->x[1] + P->x[2] * P->x[2];
+    const double eta2 = 0.01 * P->h * P->h, volj = P->mj / P->rhoj;
+    double vg[3], vx = 0, vw = 0, gx = 0;
+    for (int d = 0; d < 3; ++d) {
+        vg[d] = P->ui[d] - P->ugj[d];
+        vx += vg[d] * P->x[d];
+        vw += (P->ui[d] - P->uj[d]) * P->x[d];
+        gx += P->g[d] * P->x[d];
+    }
+    const double mu = vx < 0 ? P->h * vx / (r2 + eta2) : 0.0;
+    const double Pi =
+        (-P->alpha * 0.5 * (P->ci + P->cj) * mu + P->beta * mu * mu) / (0.5 * (P->rhoi + P->rhoj));
+    const double S = P->pi / (P->rhoi * P->rhoi) + P->pj / (P->rhoj * P->rhoj) + Pi;
+    const double L = volj * P->fw * r2 / (r2 + eta2);   /* Morris: V_j x.gradW / (r^2 + eta^2) */
+    const double mu_j = P->fluid > 0 ? P->muj : P->mui; /* a wall takes the fluid's */
+    double rep = 0;
+    if (P->fluid == 0 && r2 < P->rep_r0 * P->rep_r0) {
+        const double q2 = fmin(P->rep_r0 * P->rep_r0 / r2, 1e3);
+        rep = P->rep_d * (pow(q2, 6) - pow(q2, 2)) / r2;
+    }
+    for (int d = 0; d < 3; ++d)
+        a[d] = -P->mj * S * P->fw * P->x[d] + P->visc * (P->mui + mu_j) / P->rhoi * L * vg[d] +
+               rep * P->x[d];
+    *div = volj * vw * P->fw;
+    *diff = P->fluid * (P->rhoj - P->rhoi + P->rho0 * gx / (P->c0 * P->c0)) * L;
+    *de = 0.5 * P->mj * S * vx * P->fw;
+}
+
+/* The pair function in double (reference density 1000, so that the deviations are exercised)
+ * and in single precision against pair_by_hand. */
+static void check_pair(const hand_pair *P, const char *what) {
+    double a[3], div, diff, de;
+    pair_by_hand(P, a, &div, &diff, &de);
+    const double rho_ref = 1000.0, fh = P->rho0 / (P->c0 * P->c0);
+    const double r2 = P->x[0] * P->x[0] + P->x[1] * P->x[1] + P->x[2] * P->x[2];
+    const wc_pair_k_d K = {P->h,    0.01 * P->h * P->h, P->alpha,
+                           P->beta, P->rep_d,           P->rep_r0 * P->rep_r0};
+    const wc_pair_i_d I = {P->ui[0],
+                           P->ui[1],
+                           P->ui[2],
+                           P->rhoi - rho_ref,
+                           2.0 * rho_ref + (P->rhoi - rho_ref),
+                           P->pi / (P->rhoi * P->rhoi),
+                           P->mui,
+                           1.0 / P->rhoi,
+                           P->ci,
+                           fh * P->g[0],
+                           fh * P->g[1],
+                           fh * P->g[2]};
+    const wc_pair_j_d J = {P->uj[0],
+                           P->uj[1],
+                           P->uj[2],
+                           P->ugj[0],
+                           P->ugj[1],
+                           P->ugj[2],
+                           P->rhoj - rho_ref,
+                           P->pj / (P->rhoj * P->rhoj),
+                           P->mj / P->rhoj,
+                           P->muj,
+                           P->cj,
+                           P->mj,
+                           P->fluid,
+                           P->visc};
+    const wc_pair_out_d o = wc_pair_d(&K, &I, &J, P->x[0], P->x[1], P->x[2], r2, P->fw, 3, 1, 1);
+    /* The same records rounded to single precision. */
+    const wc_pair_k_f Kf = {(float)K.h,    (float)K.eta2,  (float)K.alpha,
+                            (float)K.beta, (float)K.rep_d, (float)K.rep_r02};
+    const wc_pair_i_f If = {(float)I.ux,   (float)I.uy,    (float)I.uz,  (float)I.drho,
+                            (float)I.rho2, (float)I.prho2, (float)I.mu,  (float)I.inv_rho,
+                            (float)I.cs,   (float)I.fgx,   (float)I.fgy, (float)I.fgz};
+    const wc_pair_j_f Jf = {(float)J.ux,  (float)J.uy,   (float)J.uz,    (float)J.ugx, (float)J.ugy,
+                            (float)J.ugz, (float)J.drho, (float)J.prho2, (float)J.vol, (float)J.mu,
+                            (float)J.cs,  (float)J.mass, (float)J.fluid, (float)J.visc};
+    const wc_pair_out_f of = wc_pair_f(&Kf, &If, &Jf, (float)P->x[0], (float)P->x[1],
+                                       (float)P->x[2], (float)r2, (float)P->fw, 3, 1, 1);
+    const double as = fabs(a[0]) + fabs(a[1]) + fabs(a[2]);
+    const double got_d[6] = {o.ax, o.ay, o.az, o.div, o.diff, o.de};
+    const double got_f[6] = {of.ax, of.ay, of.az, of.div, of.diff, of.de};
+    const double want[6] = {a[0], a[1], a[2], div, diff, de};
+    const double scale[6] = {as, as, as, fabs(div), fabs(diff), fabs(de)};
+    print_message("%s: a = (%.9g, %.9g, %.9g), div %.9g, diff %.9g, de %.9g\n", what, a[0], a[1],
+                  a[2], div, diff, de);
+    for (int k = 0; k < 6; ++k) {
+        assert_true(fabs(got_d[k] - want[k]) <= 1e-12 * scale[k]);
+        assert_true(fabs(got_f[k] - want[k]) <= 2e-6 * scale[k]);
+    }
+}
+
+static void test_pair_function(void **state) {
+    (void)state;
+    /* Two fluid particles approaching, sound speeds 12 and 14 m/s, Fourtakas' term. */
+    hand_pair P = {{0.1, 0.05, -0.02},
+                   {-0.2, 0.0, 0.03},
+                   {-0.2, 0.0, 0.03},
+                   1010.0,
+                   995.0,
+                   150.0,
+                   -60.0,
+                   1.01,
+                   0.995,
+                   12.0,
+                   14.0,
+                   1e-3,
+                   1.0,
+                   1.0,
+                   {0.003, -0.004, 0.012},
+                   -2.5e6,
+                   0.01,
+                   0.1,
+                   0.2,
+                   {0.0, 0.0, -9.81},
+                   1000.0,
+                   12.0,
+                   0.0,
+                   0.0};
+    check_pair(&P, "fluid pair, approaching");
+    /* Receding: no artificial viscosity. */
+    for (int d = 0; d < 3; ++d) P.uj[d] = P.ugj[d] = -P.uj[d];
+    check_pair(&P, "fluid pair, receding");
+    /* A wall neighbour within the repulsion radius: its ghost velocity and viscous factor,
+     * the fluid's viscosity, no density diffusion, the repulsion. */
+    hand_pair W = P;
+    W.fluid = 0.0;
+    W.visc = 0.5;
+    W.muj = 7.0;
+    for (int d = 0; d < 3; ++d) {
+        W.uj[d] = 0.0;
+        W.ugj[d] = 0.3 - 0.1 * d;
+    }
+    W.rep_d = 2e-3;
+    W.rep_r0 = 0.02;
+    check_pair(&W, "wall neighbour, repulsion");
+    /* Closer than r0 / sqrt(1e3): the repulsion's cap. */
+    for (int d = 0; d < 3; ++d) W.x[d] *= 0.02;
+    check_pair(&W, "wall neighbour, repulsion capped");
+}
+
 static void test_list_loop(void **state) {
     (void)state;
     check_loop("list", 1e-12);
@@ -134,6 +288,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_list_loop),
         cmocka_unit_test(test_cell_loop),
+        cmocka_unit_test(test_pair_function),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

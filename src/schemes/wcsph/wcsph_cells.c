@@ -1,21 +1,23 @@
-/* The cell-range pair loop of WCSPH (scheme.pair_loop: cells): the equations of the
- * neighbour-list loop (wcsph_list.c) for the cases that wc_fast_eligible admits, with its
- * candidate ranges (wc_fast_ranges) and its single-precision records (wc_fpack_fluid).
+/* The cell-range pair loop of WCSPH (scheme.pair_loop: cells): the pair term of the
+ * neighbour-list loop (wcsph_pair.h) in single precision, for the cases that wc_fast_eligible
+ * admits, with its candidate ranges (wc_fast_ranges) and its single-precision records
+ * (wc_fpack_fluid).
  *
  * The particles are sorted by cell at every neighbour search (sim->sort_always), so the
  * candidates of particle i are the particles of the 3 (2D) or 9 (3D) rows of cells around its
  * cell at the last search: consecutive index ranges, a superset of the Verlet list. The pair
- * terms run as one SIMD loop over each range, in single precision (eight pairs per AVX2
- * instruction), with the pairs beyond the support masked: no neighbour list is read and no
- * neighbour data is gathered or copied. Separations are formed from the double-precision
- * positions and then rounded; densities enter as deviations from a reference density (so that
- * rho_j - rho_i keeps its digits); the pair terms are summed in double precision. The state and
- * the integrator stay in double precision. */
+ * terms run as one SIMD loop of eight lanes over each range (eight pairs per AVX instruction),
+ * the pairs beyond the support masked: no neighbour list is read and no neighbour data is
+ * gathered or copied. Separations are formed from the double-precision positions and then
+ * rounded; densities enter as deviations from a reference density (so that rho_j - rho_i keeps
+ * its digits); the lanes' sums are added in double precision. The state and the integrator stay
+ * in double precision. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "kernel/kernel_float.h"
 #include "schemes/wcsph/wcsph_internal.h"
 
 typedef struct fast_ctx {
@@ -28,113 +30,120 @@ typedef struct fast_ctx {
     const double *v[3], *rho0m;
     const uint8_t *material;
     double g[3], diff, rho_ref, inv_c02;
-    float rad2, inv_h, dnorm_h, h0, eta2, alpha, beta, rep_d, rep_r02, c0;
+    float rad2, inv_h, dnorm_h, c0;
+    wc_pair_k_f K; /* the pair term's constants */
     int cont, fourtakas;
 } fast_ctx;
 
-static inline __attribute__((always_inline)) void fast_particle(const fast_ctx *restrict c,
-                                                                size_t i, const int dim,
-                                                                const ry_kernel_type kt,
-                                                                double *amax2, double *vmax2) {
+/* Candidate l of fluid particle i (at xi, yi, zi; record I) in the cell-range loop: the pair
+ * term, its kernel factor zero beyond the support. (A function of its own, so that the SIMD loop
+ * that calls it has no addressable locals to privatise per lane.) */
+static inline __attribute__((always_inline)) wc_pair_out_f
+fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *I, double xi,
+           double yi, double zi, size_t l, const int dim, const ry_kernel_type kt,
+           const int repulse) {
+    const size_t fs = c->fs;
+    const float *restrict fk = c->fk;
+    const float dx = (float)(xi - c->x[0][l]), dy = (float)(yi - c->x[1][l]);
+    const float dz = dim > 2 ? (float)(zi - c->x[2][l]) : 0.0f;
+    float r2 = dx * dx + dy * dy;
+    if (dim > 2) r2 += dz * dz;
+    /* i itself (r2 = 0) contributes nothing: every term has a factor x_ij or r2, and the
+     * repulsion needs r2 > 0. */
+    const float fq = c->dnorm_h * ry_kdshape_over_qf(kt, sqrtf(r2) * c->inv_h);
+    const float fw = r2 < c->rad2 ? fq : 0.0f;
+    wc_pair_j_f J;
+    J.ux = fk[FK_U * fs + l];
+    J.uy = fk[FK_V * fs + l];
+    J.uz = dim > 2 ? fk[FK_W * fs + l] : 0.0f;
+    J.ugx = fk[FK_UG * fs + l];
+    J.ugy = fk[FK_VG * fs + l];
+    J.ugz = dim > 2 ? fk[FK_WG * fs + l] : 0.0f;
+    J.drho = fk[FK_DRHO * fs + l];
+    J.prho2 = fk[FK_PRHO2 * fs + l];
+    J.vol = fk[FK_VOL * fs + l];
+    J.mu = fk[FK_MU * fs + l];
+    J.cs = c->c0;
+    J.mass = fk[FK_MASS * fs + l];
+    J.fluid = fk[FK_FLUID * fs + l];
+    J.visc = fk[FK_VISC * fs + l];
+    return wc_pair_f(K, I, &J, dx, dy, dz, r2, fw, dim, 0, repulse);
+}
+
+/* Acceleration and density rate of fluid particle i: the pair term of wcsph_pair.h in single
+ * precision over the candidate ranges, eight candidates at a time (one SIMD loop of eight
+ * lanes, each lane with its own sums, so that the order of summation does not depend on the
+ * processor's vector width), candidates beyond the support masked by fw = 0. dim, the kernel
+ * type and `repulse` are literals at each call site. */
+static inline __attribute__((always_inline)) void
+fast_particle(const fast_ctx *restrict c, size_t i, const int dim, const ry_kernel_type kt,
+              const int repulse, double *amax2, double *vmax2) {
     if (c->kind[i] != RY_KIND_FLUID) return;
     const int nrange = dim > 2 ? 9 : 3;
     const uint32_t *restrict rg = c->rng + (size_t)i * 2 * (size_t)nrange;
     const size_t fs = c->fs;
     const float *restrict fk = c->fk;
-    const double *restrict x0 = c->x[0], *restrict x1 = c->x[1], *restrict x2 = c->x[2];
-    const double xi = x0[i], yi = x1[i], zi = dim > 2 ? x2[i] : 0.0;
-    const float ui = fk[FK_U * fs + i], vi = fk[FK_V * fs + i];
-    const float wi = dim > 2 ? fk[FK_W * fs + i] : 0.0f;
-    const float dri = fk[FK_DRHO * fs + i], pri = fk[FK_PRHO2 * fs + i];
-    const float mui = fk[FK_MU * fs + i];
-    const float rhoi2 = 2.0f * (float)c->rho_ref + dri; /* rho_i + rho_j - dr_j */
-    const float inv_rhoi = (float)(1.0 / c->rho[i]);
-    const float rad2 = c->rad2, inv_h = c->inv_h, dnorm_h = c->dnorm_h, h0 = c->h0;
-    /* -alpha c_ij with c_ij = c0: the cell-range loop serves the Tait and linear equations of
-     * state, whose sound speed is constant. */
-    const float eta2 = c->eta2, hac0 = -c->alpha * c->c0, beta = c->beta;
-    const float rep_d = c->rep_d, rep_r02 = c->rep_r02;
-    const int fourtakas = c->fourtakas;
-    const float fh = fourtakas ? (float)(c->rho0m[c->material[i]] * c->inv_c02) : 0.0f;
-    const float fgx = fh * (float)c->g[0], fgy = fh * (float)c->g[1], fgz = fh * (float)c->g[2];
-    const v8f zero = {0};
-    v8f sx = zero, sy = zero, sz = zero, sr = zero, sd = zero;
+    const double xi = c->x[0][i], yi = c->x[1][i], zi = dim > 2 ? c->x[2][i] : 0.0;
+    const wc_pair_k_f K = c->K; /* (a local copy: loop-invariant for the vectoriser) */
+    wc_pair_i_f I;
+    I.ux = fk[FK_U * fs + i];
+    I.uy = fk[FK_V * fs + i];
+    I.uz = dim > 2 ? fk[FK_W * fs + i] : 0.0f;
+    I.drho = fk[FK_DRHO * fs + i];
+    I.rho2 = 2.0f * (float)c->rho_ref + I.drho;
+    I.prho2 = fk[FK_PRHO2 * fs + i];
+    I.mu = fk[FK_MU * fs + i];
+    I.inv_rho = (float)(1.0 / c->rho[i]);
+    /* c_ij = c0: the cell-range loop serves the Tait and linear equations of state, whose
+     * sound speed is constant. */
+    I.cs = c->c0;
+    const float fh = c->fourtakas ? (float)(c->rho0m[c->material[i]] * c->inv_c02) : 0.0f;
+    I.fgx = fh * (float)c->g[0];
+    I.fgy = fh * (float)c->g[1];
+    I.fgz = fh * (float)c->g[2];
+    float sx[8] = {0}, sy[8] = {0}, sz[8] = {0}, sr[8] = {0}, sd[8] = {0};
     for (int r = 0; r < nrange; ++r) {
         for (size_t j = rg[2 * r]; j < rg[2 * r + 1]; j += 8) {
-            const v8f dx = v8_sep(xi, x0 + j), dy = v8_sep(yi, x1 + j);
-            const v8f dz = dim > 2 ? v8_sep(zi, x2 + j) : zero;
-            v8f r2 = dx * dx + dy * dy;
-            if (dim > 2) r2 += dz * dz;
-            /* i itself (r2 = 0) contributes nothing: every term has a factor x_ij or r2, and
-             * the repulsion needs r2 > 0. */
-            const v8f fw =
-                v8_and(r2 < rad2, dnorm_h * v8_kernel_dshape_over_q(kt, v8_sqrt(r2) * inv_h));
-            const v8f vx = ui - v8_load(fk + FK_UG * fs + j),
-                      vy = vi - v8_load(fk + FK_VG * fs + j);
-            const v8f vz = dim > 2 ? wi - v8_load(fk + FK_WG * fs + j) : zero;
-            v8f vdx = vx * dx + vy * dy;
-            if (dim > 2) vdx += vz * dz;
-            v8f vdw =
-                (ui - v8_load(fk + FK_U * fs + j)) * dx + (vi - v8_load(fk + FK_V * fs + j)) * dy;
-            if (dim > 2) vdw += (wi - v8_load(fk + FK_W * fs + j)) * dz;
-            const v8f ieta = 1.0f / (r2 + eta2);
-            /* Monaghan's artificial viscosity, active for approaching pairs only. */
-            const v8f mu_ij = h0 * v8_and(vdx < 0.0f, vdx) * ieta;
-            const v8f drj = v8_load(fk + FK_DRHO * fs + j);
-            const v8f pi_ij = (hac0 + beta * mu_ij) * mu_ij * 2.0f / (rhoi2 + drj);
-            const v8f volj = v8_load(fk + FK_VOL * fs + j), isj = v8_load(fk + FK_FLUID * fs + j);
-            v8f fp =
-                -v8_load(fk + FK_MASS * fs + j) * (pri + v8_load(fk + FK_PRHO2 * fs + j) + pi_ij);
-            const v8f fwe = fw * r2 * ieta * volj;
-            const v8f muj = isj * v8_load(fk + FK_MU * fs + j) + (1.0f - isj) * mui;
-            const v8f fv = v8_load(fk + FK_VISC * fs + j) * (mui + muj) * inv_rhoi * fwe;
-            fp *= fw;
-            /* Wall repulsion (r2 < r0^2 lies within the support), rarely active: computed
-             * only for the vectors that need it. (r0/r)^2 is capped at 1e3 so that single
-             * precision cannot overflow. */
-            const v8i on = (isj == 0.0f) & (r2 < rep_r02) & (r2 > 0.0f);
-            if (v8_any(on)) {
-                const v8f inv_r2 = 1.0f / (r2 + v8_and(~on, zero + 1.0f));
-                v8f q2 = rep_r02 * inv_r2;
-                const v8i big = q2 >= 1e3f;
-                q2 = v8_and(~big, q2) + v8_and(big, zero + 1e3f);
-                const v8f q4 = q2 * q2;
-                fp += v8_and(on, rep_d * (q4 * q4 * q4 - q4) * inv_r2);
+#pragma omp simd
+            for (int k = 0; k < 8; ++k) {
+                const wc_pair_out_f o =
+                    fluid_lane(c, &K, &I, xi, yi, zi, j + (size_t)k, dim, kt, repulse);
+                sx[k] += o.ax;
+                sy[k] += o.ay;
+                if (dim > 2) sz[k] += o.az;
+                sr[k] += o.div;
+                sd[k] -= o.diff;
             }
-            sx += fp * dx + fv * vx;
-            sy += fp * dy + fv * vy;
-            if (dim > 2) sz += fp * dz + fv * vz;
-            sr += volj * vdw * fw;
-            v8f dd = drj - dri;
-            if (fourtakas) dd += dim > 2 ? fgx * dx + fgy * dy + fgz * dz : fgx * dx + fgy * dy;
-            sd -= isj * dd * fwe;
         }
     }
-    const double ai[3] = {v8_sum(sx) + c->g[0], v8_sum(sy) + c->g[1], v8_sum(sz) + c->g[2]};
+    const double ai[3] = {wc_lanes_sum(sx) + c->g[0], wc_lanes_sum(sy) + c->g[1],
+                          wc_lanes_sum(sz) + c->g[2]};
     double a2 = 0, v2 = 0;
     for (int d = 0; d < dim; ++d) {
         c->a[d][i] = ai[d];
         a2 += ai[d] * ai[d];
         v2 += c->v[d][i] * c->v[d][i];
     }
-    if (c->cont) c->drho[i] = c->rho[i] * v8_sum(sr) + c->diff * v8_sum(sd);
+    if (c->cont) c->drho[i] = c->rho[i] * wc_lanes_sum(sr) + c->diff * wc_lanes_sum(sd);
     *amax2 = a2 > *amax2 ? a2 : *amax2;
     *vmax2 = v2 > *vmax2 ? v2 : *vmax2;
 }
 
 typedef void (*fast_driver)(const fast_ctx *c, size_t n, force_out *res);
-#define RY_FAST_DRIVER_(DIM, KT)                                                                   \
-    static void fast_##DIM##_##KT(const fast_ctx *c, size_t n, force_out *res) {                   \
+#define RY_FAST_DRIVER_(DIM, KT, REP)                                                              \
+    static void fast_##DIM##_##KT##_##REP(const fast_ctx *c, size_t n, force_out *res) {           \
         double amax2 = 0, vmax2 = 0;                                                               \
         _Pragma("omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)") for (      \
-            size_t i = 0; i < n; ++i) fast_particle(c, i, DIM, KT, &amax2, &vmax2);                \
+            size_t i = 0; i < n; ++i) fast_particle(c, i, DIM, KT, REP, &amax2, &vmax2);           \
         res->amax2 = amax2;                                                                        \
         res->vmax2 = vmax2;                                                                        \
     }
-#define RY_FAST_DRIVERS_(KT) RY_FAST_DRIVER_(2, KT) RY_FAST_DRIVER_(3, KT)
+#define RY_FAST_DRIVERS_(KT)                                                                       \
+    RY_FAST_DRIVER_(2, KT, 0)                                                                      \
+    RY_FAST_DRIVER_(2, KT, 1) RY_FAST_DRIVER_(3, KT, 0) RY_FAST_DRIVER_(3, KT, 1)
 RY_FOR_EACH_KERNEL_(RY_FAST_DRIVERS_)
-#define RY_FAST_ROW_(KT) [KT] = {fast_2_##KT, fast_3_##KT},
-static const fast_driver fast_drivers[RY_KERNEL_COUNT][2] = {RY_FOR_EACH_KERNEL_(RY_FAST_ROW_)};
+#define RY_FAST_ROW_(KT) RY_DRIVER_ROW_(fast, KT),
+static const fast_driver fast_drivers[RY_KERNEL_COUNT][2][2] = {RY_FOR_EACH_KERNEL_(RY_FAST_ROW_)};
 #undef RY_FAST_ROW_
 #undef RY_FAST_DRIVERS_
 #undef RY_FAST_DRIVER_
@@ -350,14 +359,15 @@ void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     c.rad2 = (float)(sim->nl_radius * sim->nl_radius);
     c.inv_h = (float)k->inv_h;
     c.dnorm_h = (float)(k->dnorm / k->h);
-    c.h0 = (float)k->h;
-    c.eta2 = (float)ry_morris_eta2(k->h);
-    c.alpha = (float)w->alpha;
     c.c0 = (float)w->c0;
-    c.beta = (float)w->beta;
-    c.rep_d = (float)w->rep_d;
-    c.rep_r02 = (float)(w->rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0);
-    fast_drivers[k->type][sim->dim - 2](&c, ps->n, res);
+    const wc_pair_k_d K = wc_pair_constants(sim, w);
+    c.K.h = (float)K.h;
+    c.K.eta2 = (float)K.eta2;
+    c.K.alpha = (float)K.alpha;
+    c.K.beta = (float)K.beta;
+    c.K.rep_d = (float)K.rep_d;
+    c.K.rep_r02 = (float)K.rep_r02;
+    fast_drivers[k->type][sim->dim - 2][c.K.rep_r02 > 0.0f](&c, ps->n, res);
 }
 
 /* Whether every material has the density and viscosity of the first, and the equation of

@@ -14,7 +14,7 @@
 #include "pairs/pair_cache.h"
 #include "physics/polymer_stress.h"
 #include "physics/viscosity_morris1997.h"
-#include "schemes/wcsph/wcsph_v8.h"
+#include "schemes/wcsph/wcsph_pair.h"
 
 enum { DENS_CONTINUITY, DENS_SUMMATION };
 enum { EOS_TAIT, EOS_LINEAR, EOS_IDEAL_GAS };
@@ -62,6 +62,26 @@ typedef struct wcsph {
     ry_st_work stw; /* the Laplace jump P_i of the surface particles (0 elsewhere), their tag */
     double coll_r, coll_e; /* artificial repulsion: distance [m], restitution */
 } wcsph;
+
+/* The sum of eight single-precision lanes in double precision, halves added, then pairs: the
+ * cell-range loop's sums (one per lane of eight candidates). */
+static inline double wc_lanes_sum(const float *a) {
+    const double s0 = (double)a[0] + (double)a[4], s1 = (double)a[1] + (double)a[5];
+    const double s2 = (double)a[2] + (double)a[6], s3 = (double)a[3] + (double)a[7];
+    return (s0 + s2) + (s1 + s3);
+}
+
+/* The constants of the pair term (wcsph_pair.h) for this run, in double precision. */
+static inline wc_pair_k_d wc_pair_constants(const ry_sim *sim, const wcsph *w) {
+    wc_pair_k_d K;
+    K.h = sim->kernel.h;
+    K.eta2 = ry_morris_eta2(sim->kernel.h);
+    K.alpha = w->alpha;
+    K.beta = w->beta;
+    K.rep_d = w->rep_d;
+    K.rep_r02 = w->rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0;
+    return K;
+}
 
 /* What a force evaluation returns: the largest squared acceleration and speed of the fluid. */
 typedef struct force_out {

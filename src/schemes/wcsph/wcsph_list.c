@@ -115,7 +115,8 @@ typedef struct pass_ctx {
     size_t len;      /* longest neighbour list */
     const ry_kernel *k;
     const ry_box *box;
-    double h0, eta2, inv_h0, dnorm_h, rad2, g[3], diff, alpha, beta, inv_c02, rep_d, rep_r02;
+    double h0, inv_h0, dnorm_h, rad2, g[3], diff, inv_c02;
+    wc_pair_k_d K; /* the pair term's constants */
     int cont, varh, energy, fourtakas, periodic;
 } pass_ctx;
 
@@ -140,7 +141,6 @@ static void pass_ctx_init(pass_ctx *c, ry_sim *sim, const wcsph *w) {
     c->k = k;
     c->box = &sim->box;
     c->h0 = k->h;
-    c->eta2 = ry_morris_eta2(k->h);
     c->inv_h0 = 1.0 / k->h;
     c->dnorm_h = k->dnorm / k->h; /* (dW/dr) / r = dnorm_h f'(q)/q */
     c->rad2 = sim->nl_radius * sim->nl_radius;
@@ -149,12 +149,9 @@ static void pass_ctx_init(pass_ctx *c, ry_sim *sim, const wcsph *w) {
     c->energy = w->energy;
     c->diff = w->diffusion != DIFF_NONE ? 2.0 * w->delta * k->h * w->c0 : 0.0;
     c->fourtakas = w->diffusion == DIFF_FOURTAKAS;
-    c->alpha = w->alpha;
-    c->beta = w->beta;
     c->periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
     c->inv_c02 = 1.0 / (w->c0 * w->c0);
-    c->rep_d = w->rep_d;
-    c->rep_r02 = w->rep_d > 0 ? w->rep_r0 * w->rep_r0 : 0.0;
+    c->K = wc_pair_constants(sim, w);
     c->len = (sim->nl.max_row + 8) & ~(size_t)7; /* rounded up, at least 8 */
 }
 
@@ -219,17 +216,25 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         if (varh) sc[SC_H * len + p] = Sj[PK_H];
     }
 
-    /* Phase 2: the pair terms. */
-    const double h0 = c->h0, eta2 = c->eta2, inv_h0 = c->inv_h0, dnorm_h = c->dnorm_h;
-    const double alpha = c->alpha, beta = c->beta;
-    const double rep_d = c->rep_d, rep_r02 = c->rep_r02;
-    const int fourtakas = c->fourtakas;
-    const double rhoi = Si[PK_RHO], pri = Si[PK_PRHO2], mui = Si[PK_MU], ci = Si[PK_CS];
-    const double hi = Si[PK_H];
-    const double inv_rhoi = 1.0 / rhoi;
-    const double fh = fourtakas ? c->rho0m[c->material[i]] * c->inv_c02 : 0.0;
+    /* Phase 2: the pair terms (wcsph_pair.h, in double precision; densities taken from the
+     * reference 0). */
+    const double inv_h0 = c->inv_h0, dnorm_h = c->dnorm_h, hi = Si[PK_H];
     const double ui = Pi[U], vi = Pi[U + 1], wi = dim > 2 ? Pi[U + 2] : 0.0;
     const double gx = c->g[0], gy = c->g[1], gz = dim > 2 ? c->g[2] : 0.0;
+    const wc_pair_k_d K = c->K; /* (a local copy: loop-invariant for the vectoriser) */
+    wc_pair_i_d I;
+    I.ux = ui;
+    I.uy = vi;
+    I.uz = wi;
+    I.drho = I.rho2 = Si[PK_RHO];
+    I.prho2 = Si[PK_PRHO2];
+    I.mu = Si[PK_MU];
+    I.inv_rho = 1.0 / Si[PK_RHO];
+    I.cs = Si[PK_CS];
+    const double fh = c->fourtakas ? c->rho0m[c->material[i]] * c->inv_c02 : 0.0;
+    I.fgx = fh * gx;
+    I.fgy = fh * gy;
+    I.fgz = fh * gz;
     const double *restrict su = sc + SC_U * len, *restrict sv = sc + SC_V * len;
     const double *restrict sw = sc + SC_W * len, *restrict sug = sc + SC_UG * len;
     const double *restrict svg = sc + SC_VG * len, *restrict swg = sc + SC_WG * len;
@@ -249,34 +254,28 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         } else {
             fw = dnorm_h * ry_kernel_dshape_over_q(kt, sqrt(r2) * inv_h0);
         }
-        const double uj = su[p], vj = sv[p], wj = dim > 2 ? sw[p] : 0.0;
-        const double vx = ui - sug[p], vy = vi - svg[p], vz = dim > 2 ? wi - swg[p] : 0.0;
-        const double vdx = vx * dx + vy * dy + vz * dz;
-        const double vdw = (ui - uj) * dx + (vi - vj) * dy + (wi - wj) * dz;
-        const double ieta = 1.0 / (r2 + eta2);
-        /* Monaghan's artificial viscosity, active for approaching pairs only. */
-        const double mu_ij = h0 * (vdx < 0.0 ? vdx : 0.0) * ieta;
-        const double rhoj = srho[p], volj = svol[p], isj = sfl[p];
-        const double prj = sprho2[p];
-        const double pi_ij =
-            (-alpha * 0.5 * (ci + scs[p]) * mu_ij + beta * mu_ij * mu_ij) * 2.0 / (rhoi + rhoj);
-        const double mj = smass[p];
-        const double fp = -mj * (pri + prj + pi_ij) * fw;
-        /* Morris et al. (1997) laminar viscosity (a wall takes the fluid's viscosity). */
-        const double muj = isj * smu[p] + (1.0 - isj) * mui; /* isj is 0 or 1 */
-        const double lw = ry_morris_weight(volj, fw * r2, ieta);
-        const double fv = svis[p] * ry_morris_coefficient(mui + muj, lw) * inv_rhoi;
-        /* Wall repulsion, the rare case of a fluid particle very close to a wall. */
-        const double fr =
-            wall_repulsion(r2, isj == 0.0 && r2 < rep_r02 && r2 > 0.0, rep_r02, rep_d);
-        ax += fp * dx + fv * vx + fr * dx;
-        ay += fp * dy + fv * vy + fr * dy;
-        if (dim > 2) az += fp * dz + fv * vz + fr * dz;
-        dr += volj * vdw * fw;
-        double drj = rhoj - rhoi;
-        if (fourtakas) drj += fh * (gx * dx + gy * dy + gz * dz);
-        dd -= isj * drj * lw;
-        if (energy) dei += 0.5 * mj * (pri + prj + pi_ij) * vdx * fw;
+        wc_pair_j_d J;
+        J.ux = su[p];
+        J.uy = sv[p];
+        J.uz = dim > 2 ? sw[p] : 0.0;
+        J.ugx = sug[p];
+        J.ugy = svg[p];
+        J.ugz = dim > 2 ? swg[p] : 0.0;
+        J.drho = srho[p];
+        J.prho2 = sprho2[p];
+        J.vol = svol[p];
+        J.mu = smu[p];
+        J.cs = scs[p];
+        J.mass = smass[p];
+        J.fluid = sfl[p];
+        J.visc = svis[p];
+        const wc_pair_out_d o = wc_pair_d(&K, &I, &J, dx, dy, dz, r2, fw, dim, energy, 1);
+        ax += o.ax;
+        ay += o.ay;
+        if (dim > 2) az += o.az;
+        dr += o.div;
+        dd -= o.diff;
+        if (energy) dei += o.de;
     }
     const double ai[3] = {ax + gx, ay + gy, az + gz}, vi3[3] = {ui, vi, wi};
     double a2 = 0, v2 = 0;
@@ -285,7 +284,7 @@ fluid_particle(const pass_ctx *restrict c, size_t i, double *restrict sc, const 
         a2 += ai[d] * ai[d];
         v2 += vi3[d] * vi3[d];
     }
-    if (c->cont) c->drho[i] = rhoi * dr + c->diff * dd;
+    if (c->cont) c->drho[i] = I.drho * dr + c->diff * dd;
     if (energy) c->de[i] = dei;
     *amax2 = a2 > *amax2 ? a2 : *amax2;
     *vmax2 = v2 > *vmax2 ? v2 : *vmax2;

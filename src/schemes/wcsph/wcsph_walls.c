@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "boundary/walls_adami2012.h"
+#include "kernel/kernel_float.h"
 #include "schemes/wcsph/wcsph_internal.h"
 
 /* Wall particles: pressure, density and ghost velocity extrapolated from the fluid
@@ -104,8 +105,32 @@ static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
 }
 
 /* The wall pass of the cell-range loop: the sums of wall particle i over the fluid among its
- * candidates, in single precision from the records of wc_prepare_pairs (whose wall entries are
- * then rewritten). */
+ * candidates, by the pair function of boundary/walls_adami2012.h in single precision from the
+ * records of wc_prepare_pairs (whose wall entries are then rewritten), eight candidates at a
+ * time as in the fluid pass (wcsph_cells.c). */
+/* Candidate l of wall particle (xi, yi, zi) in the cell-range wall pass: its terms of the
+ * sums, zero unless it is fluid within the support. (A function of its own so that its small
+ * arrays are not privatised per lane by the SIMD loop that calls it.) */
+static inline __attribute__((always_inline)) ry_adami_sumsf
+wall_lane(const double *restrict x0, const double *restrict x1, const double *restrict x2,
+          double xi, double yi, double zi, const float *restrict fk, size_t fs, size_t l,
+          const float *g, float rho_ref, float rad2, float inv_h, const int dim,
+          const ry_kernel_type kt) {
+    const float dx[3] = {(float)(xi - x0[l]), (float)(yi - x1[l]),
+                         dim > 2 ? (float)(zi - x2[l]) : 0.0f};
+    float r2 = dx[0] * dx[0] + dx[1] * dx[1];
+    if (dim > 2) r2 += dx[2] * dx[2];
+    const float wq = ry_kshapef(kt, sqrtf(r2) * inv_h);
+    const int on = (r2 < rad2) & (fk[FK_FLUID * fs + l] != 0.0f);
+    const float wij = on ? wq : 0.0f;
+    const float vf[3] = {fk[FK_U * fs + l], fk[FK_V * fs + l], dim > 2 ? fk[FK_W * fs + l] : 0.0f};
+    ry_adami_sumsf t = {0.0f, 0.0f, {0.0f, 0.0f, 0.0f}};
+    const float head = ry_adami_headf(g, dx, dim, rho_ref + fk[FK_DRHO * fs + l]);
+    ry_adami_add_pressuref(&t, wij, fk[FK_P * fs + l], head);
+    ry_adami_add_velocityf(&t, wij, vf, dim);
+    return t;
+}
+
 static inline __attribute__((always_inline)) void
 wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
                  const ry_kernel_type kt, ry_adami_sums *s) {
@@ -118,38 +143,31 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
     const float *restrict fk = w->fpack;
     const double xi = x0[i], yi = x1[i], zi = dim > 2 ? x2[i] : 0.0;
     const float rad2 = (float)(k->radius * k->radius), inv_h = (float)k->inv_h;
-    const float gx = (float)sim->gravity[0], gy = (float)sim->gravity[1];
-    const float gz = dim > 2 ? (float)sim->gravity[2] : 0.0f;
+    const float g[3] = {(float)sim->gravity[0], (float)sim->gravity[1],
+                        dim > 2 ? (float)sim->gravity[2] : 0.0f};
     const float rho_ref = (float)w->rho0m[0];
-    const v8f zero = {0};
-    v8f sw = zero, sp = zero, srx = zero, su = zero, sv = zero, sz = zero;
+    float sw[8] = {0}, sp[8] = {0}, su[8] = {0}, sv[8] = {0}, sz[8] = {0};
     for (int r = 0; r < nrange; ++r) {
         for (size_t j = rg[2 * r]; j < rg[2 * r + 1]; j += 8) {
-            const v8f dx = v8_sep(xi, x0 + j), dy = v8_sep(yi, x1 + j);
-            const v8f dz = dim > 2 ? v8_sep(zi, x2 + j) : zero;
-            v8f r2 = dx * dx + dy * dy, gr = gx * dx + gy * dy;
-            if (dim > 2) {
-                r2 += dz * dz;
-                gr += gz * dz;
+#pragma omp simd
+            for (int q = 0; q < 8; ++q) {
+                const ry_adami_sumsf t = wall_lane(x0, x1, x2, xi, yi, zi, fk, fs, j + (size_t)q, g,
+                                                   rho_ref, rad2, inv_h, dim, kt);
+                sw[q] += t.sw;
+                sp[q] += t.sp;
+                su[q] += t.sv[0];
+                sv[q] += t.sv[1];
+                if (dim > 2) sz[q] += t.sv[2];
             }
-            const v8i on = (r2 < rad2) & (v8_load(fk + FK_FLUID * fs + j) != 0.0f);
-            const v8f wij = v8_and(on, v8_kernel_shape(kt, v8_sqrt(r2) * inv_h));
-            sw += wij;
-            sp += v8_load(fk + FK_P * fs + j) * wij;
-            srx += (rho_ref + v8_load(fk + FK_DRHO * fs + j)) * gr * wij;
-            su += v8_load(fk + FK_U * fs + j) * wij;
-            sv += v8_load(fk + FK_V * fs + j) * wij;
-            if (dim > 2) sz += v8_load(fk + FK_W * fs + j) * wij;
         }
     }
     /* The kernel's normalisation cancels in every ratio but is kept for sw > 0 semantics. */
     const double norm = k->norm;
-    s->sw = norm * v8_sum(sw);
-    const double sp_p = norm * v8_sum(sp), sp_head = norm * v8_sum(srx);
-    s->sp = sp_p + sp_head;
-    s->sv[0] = norm * v8_sum(su);
-    s->sv[1] = norm * v8_sum(sv);
-    s->sv[2] = norm * v8_sum(sz);
+    s->sw = norm * wc_lanes_sum(sw);
+    s->sp = norm * wc_lanes_sum(sp);
+    s->sv[0] = norm * wc_lanes_sum(su);
+    s->sv[1] = norm * wc_lanes_sum(sv);
+    s->sv[2] = norm * wc_lanes_sum(sz);
 }
 
 #define RY_WALL_RANGES_(DIM, KT)                                                                   \

@@ -1,7 +1,7 @@
-/* Unit tests of the single-precision kernel shapes of WCSPH's cell-range loop
- * (src/schemes/wcsph/wcsph_v8.h) against the double-precision ones of
+/* Unit tests of the single-precision kernel shapes of the pair loops in floats
+ * (src/kernel/kernel_float.h) against the double-precision ones of
  * include/ryushi/kernel_shapes.h, for every kernel, at 4001 values of q spread over
- * [0, kappa) (eight lanes at a time, the lane order shuffled).
+ * [0, kappa), computed in a SIMD loop of eight lanes as the pair loops do.
  *
  * Tolerance: 4e-6 of the function's largest magnitude on [0, kappa), about 30 roundings of
  * single precision (2^-24 = 6e-8 each), which the few multiplications and one division of each
@@ -15,7 +15,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "schemes/wcsph/wcsph_v8.h"
+#include "kernel/kernel_float.h"
 
 enum { npoints = 4001 };
 
@@ -29,12 +29,16 @@ static void check_kernel(ry_kernel_type kt) {
         gmax = gmax < g ? g : gmax;
     }
     for (int i0 = 0; i0 < npoints; i0 += 8) {
-        v8f q = {0};
+        float q[8], f[8], g[8];
         for (int k = 0; k < 8; ++k) {
-            const int i = i0 + (5 * k) % 8 < npoints ? i0 + (5 * k) % 8 : npoints - 1;
+            const int i = i0 + k < npoints ? i0 + k : npoints - 1;
             q[k] = (float)(kappa * i / (double)npoints);
         }
-        const v8f f = v8_kernel_shape(kt, q), g = v8_kernel_dshape_over_q(kt, q);
+#pragma omp simd
+        for (int k = 0; k < 8; ++k) {
+            f[k] = ry_kshapef(kt, q[k]);
+            g[k] = ry_kdshape_over_qf(kt, q[k]);
+        }
         for (int k = 0; k < 8; ++k) {
             const double qd = q[k]; /* the same q as the lanes saw */
             const double df = fabs(f[k] - ry_kernel_shape(kt, qd));
@@ -55,17 +59,14 @@ static void test_every_kernel(void **state) {
     for (int kt = 0; kt < RY_KERNEL_COUNT; ++kt) check_kernel((ry_kernel_type)kt);
 }
 
-/* At q = 0 (a particle and itself, inside the support) the lanes are finite: the pair terms
+/* At q = 0 (a particle and itself, inside the support) the forms are finite: the pair terms
  * multiply f'/q by x_ij or r^2 there, which gives 0 only from a finite value. */
 static void test_origin_finite(void **state) {
     (void)state;
     for (int kt = 0; kt < RY_KERNEL_COUNT; ++kt) {
-        const v8f q = {0};
-        const v8f f = v8_kernel_shape((ry_kernel_type)kt, q);
-        const v8f g = v8_kernel_dshape_over_q((ry_kernel_type)kt, q);
-        for (int k = 0; k < 8; ++k) {
-            assert_true(isfinite(f[k]) && isfinite(g[k]));
-        }
+        const float f = ry_kshapef((ry_kernel_type)kt, 0.0f);
+        const float g = ry_kdshape_over_qf((ry_kernel_type)kt, 0.0f);
+        assert_true(isfinite(f) && isfinite(g));
     }
 }
 
