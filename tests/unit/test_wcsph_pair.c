@@ -24,7 +24,9 @@
  * the hydrostatic term of Fourtakas et al. (2019), different sound speeds, a wall neighbour
  * (its ghost velocity, viscous factor and the fluid's viscosity) and the wall repulsion of
  * Monaghan (1994), with its cap on (r0/r)^2 at 1e3. The kernel factor fw = (dW/dr)/r is an
- * input of the pair function (the traversal's); any value serves. */
+ * input of the pair function (the traversal's); any value serves. So is the transport-velocity
+ * pair term (src/schemes/wcsph/wcsph_tvf_pair.h; Adami, Hu & Adams 2013, eq. 8 and 13), on a
+ * fluid and a wall neighbour, within 1e-12. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp (tmpdir.h) */
 #include <math.h>
 #include <setjmp.h>
@@ -40,6 +42,7 @@
 #include "tmpdir.h"
 #include "ryushi/run.h"
 #include "schemes/wcsph/wcsph_pair.h"
+#include "schemes/wcsph/wcsph_tvf_pair.h"
 
 #define PI 3.14159265358979323846
 
@@ -274,6 +277,69 @@ static void test_pair_function(void **state) {
     check_pair(&W, "wall neighbour, repulsion capped");
 }
 
+/* The transport-velocity pair by hand: m_i dv_i/dt gains (V_i^2 + V_j^2) (-p~ fw x + 1/2 (rho_i
+ * v_i (v~_i - v_i) + rho_j v_j (v~_j - v_j)) . fw x + eta_ij (v_i - vg_j) fw) plus the
+ * repulsion times m_i, and the background sum (V_i^2 + V_j^2) fw x. */
+static void check_tvf(const wc_tvf_rec *I, const wc_tvf_rec *J, const double x[3], double fw,
+                      double r02, double D, const char *what) {
+    const double r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2], vv = I->vol2 + J->vol2;
+    const double pt = (J->rho * I->p + I->rho * J->p) / (I->rho + J->rho);
+    const double mj = J->fluid > 0 ? J->mu : I->mu, eta = 2.0 * I->mu * mj / (I->mu + mj);
+    double Ai = 0, Aj = 0;
+    for (int d = 0; d < 3; ++d) {
+        Ai += I->dv[d] * x[d] * fw;
+        Aj += J->fluid * J->dv[d] * x[d] * fw;
+    }
+    double rep = 0;
+    if (J->fluid == 0 && r2 < r02) {
+        const double q2 = fmin(r02 / r2, 1e3);
+        rep = D * (pow(q2, 6) - pow(q2, 2)) / r2;
+    }
+    const wc_tvf_out o = wc_tvf_pair(I, J, x, r2, fw, 3, r02, D);
+    for (int d = 0; d < 3; ++d) {
+        const double a =
+            vv * (-pt * fw * x[d] + 0.5 * (I->rho * I->v[d] * Ai + J->rho * J->v[d] * Aj) +
+                  J->visc * eta * (I->v[d] - J->vg[d]) * fw) +
+            rep * I->mass * x[d];
+        const double b = vv * fw * x[d];
+        print_message("%s: a[%d] = %.9g (%.9g), b[%d] = %.9g\n", what, d, o.a[d], a, d, b);
+        assert_true(fabs(o.a[d] - a) <= 1e-12 * fabs(a));
+        assert_true(fabs(o.b[d] - b) <= 1e-12 * fabs(b));
+    }
+}
+
+static void test_tvf_pair_function(void **state) {
+    (void)state;
+    const wc_tvf_rec I = {{0.1, 0.05, -0.02},
+                          {0.1, 0.05, -0.02},
+                          {0.01, -0.02, 0.005},
+                          1010.0,
+                          150.0,
+                          1.01,
+                          1e-12,
+                          1e-3,
+                          1.0,
+                          1.0};
+    wc_tvf_rec J = {{-0.2, 0.0, 0.03},
+                    {-0.2, 0.0, 0.03},
+                    {-0.03, 0.01, 0.02},
+                    995.0,
+                    -60.0,
+                    3.0,
+                    1.1e-12,
+                    1e-3,
+                    1.0,
+                    1.0};
+    const double x[3] = {0.003, -0.004, 0.012};
+    check_tvf(&I, &J, x, -2.5e6, 0.0, 0.0, "tvf, fluid pair");
+    /* A wall: no extra stress, the fluid's viscosity, its ghost velocity and viscous factor,
+     * the repulsion. */
+    J.fluid = 0.0;
+    J.visc = 0.5;
+    J.vg[0] = 0.4;
+    check_tvf(&I, &J, x, -2.5e6, 0.02 * 0.02, 2e-3, "tvf, wall neighbour");
+}
+
 static void test_list_loop(void **state) {
     (void)state;
     check_loop("list", 1e-12);
@@ -289,6 +355,7 @@ int main(void) {
         cmocka_unit_test(test_list_loop),
         cmocka_unit_test(test_cell_loop),
         cmocka_unit_test(test_pair_function),
+        cmocka_unit_test(test_tvf_pair_function),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

@@ -196,14 +196,6 @@ static inline int wall_like(const ry_particles *ps, size_t i) {
     return ps->kind[i] == RY_KIND_WALL || ps->kind[i] == RY_KIND_INLET;
 }
 
-/* Monaghan (1994) wall repulsion per unit mass, divided by r^2 (multiplies x_ij), for a pair
- * with `on` set (a wall particle within r0); written without branches for vector loops. */
-static inline double wall_repulsion(double r2, int on, double r02, double D) {
-    const double q2 = on ? r02 / r2 : 1.0, rr = on ? r2 : 1.0;
-    const double q4 = q2 * q2, q12 = q4 * q4 * q4;
-    return D * (q12 - q4) / rr;
-}
-
 /* The single-precision record of particle i for the cell-range loop (mu_i and the viscous
  * coupling as computed by wc_prepare_pairs; the ghost velocity is the wall pass's). */
 static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double mui, double visi) {

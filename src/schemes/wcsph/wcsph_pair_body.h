@@ -37,6 +37,18 @@ typedef struct RY_PAIR(wc_pair_out) {
     RY_REAL ax, ay, az, div, diff, de;
 } RY_PAIR(wc_pair_out);
 
+/* Monaghan (1994) wall repulsion D ((r0/r)^12 - (r0/r)^4) / r^2 (it multiplies x_ij) for a
+ * pair with `on` set (a wall particle within r0), 0 otherwise; (r0/r)^2 is capped at 1e3 so
+ * that single precision cannot overflow. Written without branches for SIMD loops. */
+RY_HD static inline RY_REAL RY_PAIR(wc_repulsion)(const int on, RY_REAL r2, RY_REAL r02,
+                                                  RY_REAL D) {
+    const RY_REAL inv_r2 = RY_C(1.0) / (on ? r2 : RY_C(1.0));
+    RY_REAL q2 = r02 * inv_r2;
+    q2 = q2 < RY_C(1e3) ? q2 : RY_C(1e3);
+    const RY_REAL q4 = q2 * q2;
+    return on ? D * (q4 * q4 * q4 - q4) * inv_r2 : RY_C(0.0);
+}
+
 /* The pair term. dim (2 or 3), energy and repulse (the energy equation, wall repulsion) are
  * literals at each call, so that the unused terms compile away. */
 RY_HD static inline RY_PAIR(wc_pair_out)
@@ -62,17 +74,9 @@ RY_HD static inline RY_PAIR(wc_pair_out)
     const RY_REAL mu_j = J->fluid * J->mu + (RY_C(1.0) - J->fluid) * I->mu;
     const RY_REAL fv = J->visc * (I->mu + mu_j) * I->inv_rho * lw;
     fp *= fw;
-    if (repulse) {
-        /* Monaghan (1994) wall repulsion D ((r0/r)^12 - (r0/r)^4) / r^2 along x_ij, for a
-         * wall particle within r0; (r0/r)^2 is capped at 1e3 so that single precision cannot
-         * overflow. */
-        const int on = (J->fluid == zero) & (r2 < K->rep_r02) & (r2 > zero);
-        const RY_REAL inv_r2 = RY_C(1.0) / (on ? r2 : RY_C(1.0));
-        RY_REAL q2 = K->rep_r02 * inv_r2;
-        q2 = q2 < RY_C(1e3) ? q2 : RY_C(1e3);
-        const RY_REAL q4 = q2 * q2;
-        fp += on ? K->rep_d * (q4 * q4 * q4 - q4) * inv_r2 : zero;
-    }
+    if (repulse)
+        fp += RY_PAIR(wc_repulsion)((J->fluid == zero) & (r2 < K->rep_r02) & (r2 > zero), r2,
+                                    K->rep_r02, K->rep_d);
     RY_PAIR(wc_pair_out) o;
     o.ax = fp * dx + fv * vx;
     o.ay = fp * dy + fv * vy;

@@ -5,6 +5,7 @@
 #include <math.h>
 
 #include "schemes/wcsph/wcsph_internal.h"
+#include "schemes/wcsph/wcsph_tvf_pair.h"
 
 /* Density by summation for fluid particles (walls keep their extrapolated density):
  * rho_i = sum_j m_j W_ij, or with the transport velocity rho_i = m_i sum_j W_ij (Adami et al.
@@ -45,6 +46,31 @@ typedef void (*density_driver)(ry_sim *sim, const wcsph *w);
             density_particle(sim, w, i, DIM, KT, PER);                                             \
     }
 
+/* The transport-velocity record of particle j (wcsph_tvf_pair.h) from the fields that
+ * wc_prepare_pairs fills (for a fluid particle the velocity viscous terms see is its own). */
+typedef struct tvf_fields {
+    const double *v[3], *vg[3], *vt[3], *m, *rho, *p, *vol, *mu, *isfl, *vis;
+} tvf_fields;
+
+static inline __attribute__((always_inline)) wc_tvf_rec tvf_record(const tvf_fields *F, size_t j,
+                                                                   const int dim) {
+    wc_tvf_rec r;
+    r.rho = F->rho[j];
+    r.p = F->p[j];
+    r.mu = F->mu[j];
+    r.vol2 = F->vol[j] * F->vol[j];
+    r.mass = F->m[j];
+    r.fluid = F->isfl[j]; /* 0 or 1 */
+    r.visc = F->vis[j];
+    for (int d = 0; d < 3; ++d) r.v[d] = r.vg[d] = r.dv[d] = 0.0;
+    for (int d = 0; d < dim; ++d) {
+        r.v[d] = F->v[d][j];
+        r.vg[d] = F->vg[d][j];
+        r.dv[d] = F->vt[d][j] - F->v[d][j];
+    }
+    return r;
+}
+
 /* Transport-velocity formulation (Adami, Hu & Adams 2013, eq. 8 and 13): pressure with the
  * density-weighted inter-particle average, the extra stress A = rho v (v~ - v), the viscous
  * term with the inter-particle averaged viscosity, and the background-pressure acceleration
@@ -55,33 +81,31 @@ tvf_particle(const ry_sim *sim, const wcsph *w, size_t i, const int dim, const r
     const ry_particles *ps = &sim->ps;
     if (ps->kind[i] != RY_KIND_FLUID) return;
     const ry_kernel *k = &sim->kernel;
-    const double *x[3], *v[3], *vg[3], *vt[3];
+    const double *x[3];
+    tvf_fields F;
     for (int d = 0; d < 3; ++d) {
         x[d] = ps->f[RY_F_X + (d < dim ? d : 0)];
-        v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
-        vg[d] = ps->f[w->f_vg[d < dim ? d : 0]];
-        vt[d] = ps->f[w->f_vt[d < dim ? d : 0]];
+        F.v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+        F.vg[d] = ps->f[w->f_vg[d < dim ? d : 0]];
+        F.vt[d] = ps->f[w->f_vt[d < dim ? d : 0]];
     }
-    const double *restrict m = ps->f[RY_F_MASS];
-    const double *restrict rho = ps->f[RY_F_RHO];
-    const double *restrict p = ps->f[RY_F_P];
-    const double *restrict vol = ps->f[w->f_vol];
-    const double *restrict mu = ps->f[w->f_mu];
-    const double *restrict isfl = ps->f[w->f_isfluid];
-    const double *restrict vis = ps->f[w->f_visc];
+    F.m = ps->f[RY_F_MASS];
+    F.rho = ps->f[RY_F_RHO];
+    F.p = ps->f[RY_F_P];
+    F.vol = ps->f[w->f_vol];
+    F.mu = ps->f[w->f_mu];
+    F.isfl = ps->f[w->f_isfluid];
+    F.vis = ps->f[w->f_visc];
     const uint32_t *restrict nb = sim->nl.j;
     const double rad2 = sim->nl_radius * sim->nl_radius;
     const double dnorm_h = k->dnorm * k->inv_h, inv_h = k->inv_h; /* (dW/dr)/r */
     const double rep_r02 = w->rep_r0 * w->rep_r0, rep_d = w->rep_d;
-    const double rhoi = rho[i], pi = p[i], mui = mu[i], vi2 = vol[i] * vol[i];
-    double ai[3] = {0, 0, 0}, bi[3] = {0, 0, 0}, Ai[3] = {0, 0, 0}, vi[3] = {0, 0, 0}, xi[3];
+    const wc_tvf_rec I = tvf_record(&F, i, dim);
+    double ai[3] = {0, 0, 0}, bi[3] = {0, 0, 0}, xi[3] = {0, 0, 0};
     double v2 = 0;
-    /* A_i = rho_i v_i (v~_i - v_i), a tensor; A_i . grad W = rho_i v_i ((v~_i - v_i).gradW) */
     for (int d = 0; d < dim; ++d) {
-        vi[d] = v[d][i];
         xi[d] = x[d][i];
-        Ai[d] = vt[d][i] - vi[d];
-        v2 += vi[d] * vi[d];
+        v2 += I.v[d] * I.v[d];
     }
     const size_t q1 = sim->nl.offset[i + 1];
     for (size_t q = sim->nl.offset[i]; q < q1; ++q) {
@@ -92,35 +116,18 @@ tvf_particle(const ry_sim *sim, const wcsph *w, size_t i, const int dim, const r
         for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
         if (r2 >= rad2 || r2 <= 0) continue;
         const double fw = dnorm_h * ry_kernel_dshape_over_q(kt, sqrt(r2) * inv_h); /* gradW/x */
-        const double rhoj = rho[j], vv = vi2 + vol[j] * vol[j];
-        const double pij = (rhoj * pi + rhoi * p[j]) / (rhoi + rhoj);
-        const double fj = isfl[j]; /* 0 or 1 */
-        const double muj = fj * mu[j] + (1.0 - fj) * mui;
-        const double etaij = (mui + muj) > 0 ? 2.0 * mui * muj / (mui + muj) : 0.0;
-        /* (A_i + A_j)/2 . grad W; walls carry no extra stress. */
-        double adi = 0, adj = 0;
+        const wc_tvf_rec J = tvf_record(&F, j, dim);
+        const wc_tvf_out o = wc_tvf_pair(&I, &J, dx, r2, fw, dim, rep_r02, rep_d);
         for (int d = 0; d < dim; ++d) {
-            adi += Ai[d] * dx[d];
-            adj += (vt[d][j] - v[d][j]) * dx[d];
-        }
-        adi *= fw;
-        adj *= fw * fj;
-        const double fr = wall_repulsion(r2, fj == 0.0 && r2 < rep_r02, rep_r02, rep_d) * m[i] / vv;
-        const double visj = vis[j];
-        for (int d = 0; d < dim; ++d) {
-            const double vij = vi[d] - vg[d][j];
-            double f = -pij * fw * dx[d] + fr * dx[d];
-            f += 0.5 * (rhoi * vi[d] * adi + rhoj * v[d][j] * adj);
-            f += visj * etaij * vij * fw; /* eta_ij v_ij (1/r) dW/dr */
-            ai[d] += vv * f;
-            bi[d] += vv * fw * dx[d];
+            ai[d] += o.a[d];
+            bi[d] += o.b[d];
         }
     }
     double a2 = 0;
     for (int d = 0; d < dim; ++d) {
-        ai[d] = ai[d] / m[i] + sim->gravity[d];
+        ai[d] = ai[d] / I.mass + sim->gravity[d];
         ps->f[RY_F_AX + d][i] = ai[d];
-        ps->f[w->f_abg[d]][i] = -w->p_tvf / m[i] * bi[d];
+        ps->f[w->f_abg[d]][i] = -w->p_tvf / I.mass * bi[d];
         a2 += ai[d] * ai[d];
     }
     *amax2 = a2 > *amax2 ? a2 : *amax2;
