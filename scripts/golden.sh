@@ -28,6 +28,8 @@ LIST='
 dam_list|dam_break_seed|spacing=0.0125 time.end=0.12 time.output_interval=0.04 scheme.pair_loop=list
 dam_cells|dam_break_seed|spacing=0.0125 time.end=0.12 time.output_interval=0.04 scheme.pair_loop=cells
 dam_3d|dam_break_3d|time.max_steps=20
+dam_energy_list|dam_break_seed|spacing=0.0125 time.end=0.08 time.output_interval=0.04 scheme.energy=true scheme.variable_h=true scheme.pair_loop=list
+dam_energy_cells|dam_break_seed|spacing=0.0125 time.end=0.08 time.output_interval=0.04 scheme.energy=true scheme.variable_h=true scheme.pair_loop=cells
 cavity|cavity_seed|time.max_steps=300
 channel|channel_inflow|time.end=0.4
 rayleigh_taylor|rayleigh_taylor|time.max_steps=200

@@ -21,7 +21,7 @@ case_ negative_spacing 2 ":2: key 'spacing': expected a positive number, got '-0
 case_ dimension_4 2 ":1: key 'dimension': expected an integer in [2, 3], got '4'"
 case_ kernel_h_out_of_range 2 ":7: key 'kernel.h_over_dx': expected a number in [0.5, 4], got '9'"
 case_ kernel_unknown 2 ":7: key 'kernel.type': expected one of cubic, quintic, wendland_c2, wendland_c4, lucy, gaussian; got 'cubik'"
-case_ pair_loop_cells_energy 2 ":7: key 'scheme.pair_loop': 'cells' needs no variable_h or energy"
+case_ pair_loop_cells_tvf 2 ":7: key 'scheme.pair_loop': 'cells' needs no transport_velocity"
 case_ cfl_out_of_range 2 ":6: key 'time.cfl': expected a number in [0.001, 1], got '2'"
 case_ dt_max_negative 2 ":6: key 'time.dt_max': expected a number >= 0, got '-0.001'"
 case_ end_time_zero 2 ":6: key 'time.end': expected a positive number, got '0'"

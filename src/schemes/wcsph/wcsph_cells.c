@@ -26,22 +26,22 @@ typedef struct fast_ctx {
     const float *fk; /* field k of particle j: fk[k * fs + j] */
     size_t fs;
     const double *x[3], *rho;
-    double *a[3], *drho;
+    double *a[3], *drho, *de;
     const double *v[3], *rho0m;
     const uint8_t *material;
     double g[3], diff, rho_ref, inv_c02;
-    float rad2, inv_h, dnorm_h, c0;
+    float rad2, inv_h, dnorm_h, c0, h0, kappa;
     wc_pair_k_f K; /* the pair term's constants */
-    int cont, fourtakas;
+    int cont, fourtakas, energy;
 } fast_ctx;
 
 /* Candidate l of fluid particle i (at xi, yi, zi; record I) in the cell-range loop: the pair
  * term, its kernel factor zero beyond the support. (A function of its own, so that the SIMD loop
  * that calls it has no addressable locals to privatise per lane.) */
 static inline __attribute__((always_inline)) wc_pair_out_f
-fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *I, double xi,
-           double yi, double zi, size_t l, const int dim, const ry_kernel_type kt,
-           const int repulse) {
+fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *I, float hi,
+           double xi, double yi, double zi, size_t l, const int dim, const ry_kernel_type kt,
+           const int repulse, const int general) {
     const size_t fs = c->fs;
     const float *restrict fk = c->fk;
     const float dx = (float)(xi - c->x[0][l]), dy = (float)(yi - c->x[1][l]);
@@ -50,8 +50,19 @@ fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *
     if (dim > 2) r2 += dz * dz;
     /* i itself (r2 = 0) contributes nothing: every term has a factor x_ij or r2, and the
      * repulsion needs r2 > 0. */
-    const float fq = c->dnorm_h * ry_kdshape_over_qf(kt, sqrtf(r2) * c->inv_h);
-    const float fw = r2 < c->rad2 ? fq : 0.0f;
+    float fw;
+    if (general) {
+        /* At h_ij = (h_i + h_j) / 2: dW/dr / r = dnorm / h0 (h0 / h_ij)^(d+2) f'(q) / q with
+         * q = r / h_ij, zero from q = kappa on (the search covers the largest h). */
+        const float hij = 0.5f * (hi + c->fk[FK_H * fs + l]), inv_hij = 1.0f / hij;
+        const float s = c->h0 * inv_hij, s2 = s * s, sd = dim > 2 ? s2 * s2 * s : s2 * s2;
+        const float q = sqrtf(r2) * inv_hij;
+        const float fq = c->dnorm_h * sd * ry_kdshape_over_qf(kt, q);
+        fw = (r2 < c->rad2) & (q < c->kappa) ? fq : 0.0f;
+    } else {
+        const float fq = c->dnorm_h * ry_kdshape_over_qf(kt, sqrtf(r2) * c->inv_h);
+        fw = r2 < c->rad2 ? fq : 0.0f;
+    }
     wc_pair_j_f J;
     J.ux = fk[FK_U * fs + l];
     J.uy = fk[FK_V * fs + l];
@@ -63,11 +74,11 @@ fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *
     J.prho2 = fk[FK_PRHO2 * fs + l];
     J.vol = fk[FK_VOL * fs + l];
     J.mu = fk[FK_MU * fs + l];
-    J.cs = c->c0;
+    J.cs = general ? fk[FK_CS * fs + l] : c->c0;
     J.mass = fk[FK_MASS * fs + l];
     J.fluid = fk[FK_FLUID * fs + l];
     J.visc = fk[FK_VISC * fs + l];
-    return wc_pair_f(K, I, &J, dx, dy, dz, r2, fw, dim, 0, repulse);
+    return wc_pair_f(K, I, &J, dx, dy, dz, r2, fw, dim, general, repulse);
 }
 
 /* Acceleration and density rate of fluid particle i: the pair term of wcsph_pair.h in single
@@ -77,7 +88,7 @@ fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *
  * type and `repulse` are literals at each call site. */
 static inline __attribute__((always_inline)) void
 fast_particle(const fast_ctx *restrict c, size_t i, const int dim, const ry_kernel_type kt,
-              const int repulse, double *amax2, double *vmax2) {
+              const int repulse, const int general, double *amax2, double *vmax2) {
     if (c->kind[i] != RY_KIND_FLUID) return;
     const int nrange = dim > 2 ? 9 : 3;
     const uint32_t *restrict rg = c->rng + (size_t)i * 2 * (size_t)nrange;
@@ -94,25 +105,27 @@ fast_particle(const fast_ctx *restrict c, size_t i, const int dim, const ry_kern
     I.prho2 = fk[FK_PRHO2 * fs + i];
     I.mu = fk[FK_MU * fs + i];
     I.inv_rho = (float)(1.0 / c->rho[i]);
-    /* c_ij = c0: the cell-range loop serves the Tait and linear equations of state, whose
-     * sound speed is constant. */
-    I.cs = c->c0;
+    /* The sound speed is c0 for the Tait and linear equations of state (constant), the
+     * particles' own with the ideal gas (the general form). */
+    I.cs = general ? fk[FK_CS * fs + i] : c->c0;
+    const float hi = general ? fk[FK_H * fs + i] : c->h0;
     const float fh = c->fourtakas ? (float)(c->rho0m[c->material[i]] * c->inv_c02) : 0.0f;
     I.fgx = fh * (float)c->g[0];
     I.fgy = fh * (float)c->g[1];
     I.fgz = fh * (float)c->g[2];
-    float sx[8] = {0}, sy[8] = {0}, sz[8] = {0}, sr[8] = {0}, sd[8] = {0};
+    float sx[8] = {0}, sy[8] = {0}, sz[8] = {0}, sr[8] = {0}, sd[8] = {0}, se[8] = {0};
     for (int r = 0; r < nrange; ++r) {
         for (size_t j = rg[2 * r]; j < rg[2 * r + 1]; j += 8) {
 #pragma omp simd
             for (int k = 0; k < 8; ++k) {
                 const wc_pair_out_f o =
-                    fluid_lane(c, &K, &I, xi, yi, zi, j + (size_t)k, dim, kt, repulse);
+                    fluid_lane(c, &K, &I, hi, xi, yi, zi, j + (size_t)k, dim, kt, repulse, general);
                 sx[k] += o.ax;
                 sy[k] += o.ay;
                 if (dim > 2) sz[k] += o.az;
                 sr[k] += o.div;
                 sd[k] -= o.diff;
+                if (general) se[k] += o.de;
             }
         }
     }
@@ -125,40 +138,51 @@ fast_particle(const fast_ctx *restrict c, size_t i, const int dim, const ry_kern
         v2 += c->v[d][i] * c->v[d][i];
     }
     if (c->cont) c->drho[i] = c->rho[i] * wc_lanes_sum(sr) + c->diff * wc_lanes_sum(sd);
+    if (general && c->energy) c->de[i] = wc_lanes_sum(se);
     *amax2 = a2 > *amax2 ? a2 : *amax2;
     *vmax2 = v2 > *vmax2 ? v2 : *vmax2;
 }
 
 typedef void (*fast_driver)(const fast_ctx *c, size_t n, force_out *res);
-#define RY_FAST_DRIVER_(DIM, KT, REP)                                                              \
-    static void fast_##DIM##_##KT##_##REP(const fast_ctx *c, size_t n, force_out *res) {           \
+#define RY_FAST_DRIVER_(DIM, KT, REP, GEN)                                                         \
+    static void fast_##DIM##_##KT##_##REP##GEN(const fast_ctx *c, size_t n, force_out *res) {      \
         double amax2 = 0, vmax2 = 0;                                                               \
         _Pragma("omp parallel for schedule(dynamic, 64) reduction(max : amax2, vmax2)") for (      \
-            size_t i = 0; i < n; ++i) fast_particle(c, i, DIM, KT, REP, &amax2, &vmax2);           \
+            size_t i = 0; i < n; ++i) fast_particle(c, i, DIM, KT, REP, GEN, &amax2, &vmax2);      \
         res->amax2 = amax2;                                                                        \
         res->vmax2 = vmax2;                                                                        \
     }
-#define RY_FAST_DRIVERS_(KT)                                                                       \
-    RY_FAST_DRIVER_(2, KT, 0)                                                                      \
-    RY_FAST_DRIVER_(2, KT, 1) RY_FAST_DRIVER_(3, KT, 0) RY_FAST_DRIVER_(3, KT, 1)
+#define RY_FAST_DRIVERS_DIM_(DIM, KT)                                                              \
+    RY_FAST_DRIVER_(DIM, KT, 0, 0)                                                                 \
+    RY_FAST_DRIVER_(DIM, KT, 0, 1) RY_FAST_DRIVER_(DIM, KT, 1, 0) RY_FAST_DRIVER_(DIM, KT, 1, 1)
+#define RY_FAST_DRIVERS_(KT) RY_FAST_DRIVERS_DIM_(2, KT) RY_FAST_DRIVERS_DIM_(3, KT)
 RY_FOR_EACH_KERNEL_(RY_FAST_DRIVERS_)
-#define RY_FAST_ROW_(KT) RY_DRIVER_ROW_(fast, KT),
-static const fast_driver fast_drivers[RY_KERNEL_COUNT][2][2] = {RY_FOR_EACH_KERNEL_(RY_FAST_ROW_)};
+/* fast_drivers[kernel][dim - 2][repulsion][general form] */
+#define RY_FAST_ROW_DIM_(DIM, KT)                                                                  \
+    {                                                                                              \
+        {fast_##DIM##_##KT##_00, fast_##DIM##_##KT##_01}, {                                        \
+            fast_##DIM##_##KT##_10, fast_##DIM##_##KT##_11                                         \
+        }                                                                                          \
+    }
+#define RY_FAST_ROW_(KT) [KT] = {RY_FAST_ROW_DIM_(2, KT), RY_FAST_ROW_DIM_(3, KT)},
+static const fast_driver fast_drivers[RY_KERNEL_COUNT][2][2][2] = {
+    RY_FOR_EACH_KERNEL_(RY_FAST_ROW_)};
 #undef RY_FAST_ROW_
+#undef RY_FAST_ROW_DIM_
 #undef RY_FAST_DRIVERS_
+#undef RY_FAST_DRIVERS_DIM_
 #undef RY_FAST_DRIVER_
 
-/* Whether the cell-range loop serves this case (every kernel): no periodic directions, no
- * variable h, energy equation, transport velocity or open boundaries (whose buffers change the
+/* Whether the cell-range loop serves this case (every kernel, the energy equation, variable h):
+ * no periodic directions, transport velocity or open boundaries (whose buffers change the
  * particle set between searches), rheology or surface tension. */
 int wc_fast_eligible(const ry_sim *sim, const wcsph *w, const char **why) {
-    *why = is_periodic(sim)             ? "no periodic directions"
-           : w->variable_h || w->energy ? "no variable_h or energy"
-           : w->tvf                     ? "no transport_velocity"
-           : sim->nopen > 0             ? "no open boundaries"
-           : w->rheo.on                 ? "Newtonian materials"
-           : w->st.model != RY_ST_NONE  ? "no surface_tension"
-                                        : NULL;
+    *why = is_periodic(sim)            ? "no periodic directions"
+           : w->tvf                    ? "no transport_velocity"
+           : sim->nopen > 0            ? "no open boundaries"
+           : w->rheo.on                ? "Newtonian materials"
+           : w->st.model != RY_ST_NONE ? "no surface_tension"
+                                       : NULL;
     return *why == NULL;
 }
 
@@ -332,6 +356,22 @@ ry_status wc_fast_ranges(ry_sim *sim, wcsph *w, ry_error *err) {
     return RY_OK;
 }
 
+/* The records of the general form (wc_fast_general) once the wall pass has set the walls'
+ * densities and pressures: every particle's sound speed and smoothing length. */
+static void fpack_general(ry_sim *sim, const wcsph *w) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n, fs = w->fpack_stride;
+    const double *restrict rho = ps->f[RY_F_RHO], *restrict p = ps->f[RY_F_P];
+    const double *restrict h = ps->f[RY_F_H];
+    const double h0 = sim->kernel.h;
+    float *restrict cs = w->fpack + FK_CS * fs, *restrict fh = w->fpack + FK_H * fs;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        cs[i] = (float)sound_speed(w, rho[i], p[i]);
+        fh[i] = (float)(h ? h[i] : h0);
+    }
+}
+
 void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     const ry_particles *ps = &sim->ps;
     const ry_kernel *k = &sim->kernel;
@@ -360,6 +400,10 @@ void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     c.inv_h = (float)k->inv_h;
     c.dnorm_h = (float)(k->dnorm / k->h);
     c.c0 = (float)w->c0;
+    c.h0 = (float)k->h;
+    c.kappa = (float)k->kappa;
+    c.de = ps->f[RY_F_DE];
+    c.energy = w->energy;
     const wc_pair_k_d K = wc_pair_constants(sim, w);
     c.K.h = (float)K.h;
     c.K.eta2 = (float)K.eta2;
@@ -367,7 +411,9 @@ void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     c.K.beta = (float)K.beta;
     c.K.rep_d = (float)K.rep_d;
     c.K.rep_r02 = (float)K.rep_r02;
-    fast_drivers[k->type][sim->dim - 2][c.K.rep_r02 > 0.0f](&c, ps->n, res);
+    const int general = wc_fast_general(w);
+    if (general) fpack_general(sim, w);
+    fast_drivers[k->type][sim->dim - 2][c.K.rep_r02 > 0.0f][general](&c, ps->n, res);
 }
 
 /* Whether every material has the density and viscosity of the first, and the equation of

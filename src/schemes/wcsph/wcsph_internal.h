@@ -104,8 +104,21 @@ enum {
     FK_FLUID,
     FK_VISC,
     FK_P, /* pressure, for the wall pass */
-    FK_COUNT
+    FK_COUNT,
+    /* only with the energy equation, the ideal gas or variable h (wc_fk_count): */
+    FK_CS = FK_COUNT, /* sound speed */
+    FK_H,             /* smoothing length */
+    FK_COUNT_ALL
 };
+/* Whether the cell-range loop's pair term takes the general form: per-particle sound speeds
+ * and smoothing lengths, and the energy rate. */
+static inline int wc_fast_general(const wcsph *w) {
+    return w->energy || w->variable_h || w->eos == EOS_IDEAL_GAS;
+}
+/* The number of single-precision fields of the cell-range loop's records. */
+static inline int wc_fk_count(const wcsph *w) {
+    return wc_fast_general(w) ? FK_COUNT_ALL : FK_COUNT;
+}
 /* Per-particle record read by the neighbour-list pair loop: everything about j in two (2D, 16
  * doubles) or three (3D, 24 doubles) cache lines instead of one array per quantity. Vectors come
  * first, one component per dimension (position, velocity, velocity seen by viscous terms), then

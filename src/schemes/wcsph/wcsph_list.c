@@ -35,9 +35,9 @@ ry_status wc_prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
     if (w->fast) {
         const size_t fs = (n + 8 + 15) & ~(size_t)15; /* room for a last vector */
         if (w->fpack_cap < fs) {
-            /* The FK_COUNT float fields, 64-byte aligned. */
+            /* The float fields, 64-byte aligned. */
             free(w->fpack);
-            w->fpack = aligned_alloc(64, fs * FK_COUNT * sizeof(float));
+            w->fpack = aligned_alloc(64, fs * (size_t)wc_fk_count(w) * sizeof(float));
             w->fpack_cap = w->fpack ? fs : 0;
             RY_CHECK(err, w->fpack != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
         }
@@ -48,7 +48,7 @@ ry_status wc_prepare_pairs(ry_sim *sim, wcsph *w, ry_error *err) {
         float *fk = w->fpack;
         for (int d = 0; d < dim; ++d)
             for (size_t i = n; i < fs; ++i) ps->f[RY_F_X + d][i] = 1e10;
-        for (int k = 0; k < FK_COUNT; ++k)
+        for (int k = 0; k < wc_fk_count(w); ++k)
             for (size_t i = n; i < fs; ++i) fk[k * fs + i] = 0.0f;
         wc_fpack_fluid(sim, w);
         return RY_OK;

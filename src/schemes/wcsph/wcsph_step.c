@@ -164,7 +164,7 @@ size_t wc_bytes(const void *state) {
     const size_t nr = w->rng_cap * (2 * (size_t)w->nrange * sizeof(uint32_t) + 1);
     return w->pack_cap * PK_STRIDE(3) * sizeof(double) +
            w->scratch_cap * (SC_COUNT + 1) * sizeof(double) +
-           w->fpack_cap * FK_COUNT * sizeof(float) + nr;
+           w->fpack_cap * (size_t)wc_fk_count(w) * sizeof(float) + nr;
 }
 
 /* Evaluates all rates at the current (predicted) state. */
@@ -302,10 +302,10 @@ static inline __attribute__((always_inline)) void final_kick(ry_sim *sim, const 
     }
 }
 
-/* The leapfrog loops of the cell-range loop's cases (fluid and fixed walls; no energy,
- * variable h, transport velocity or open boundaries), one contiguous pass per array so that
- * they vectorise. Each thread keeps the particles of its static share through the passes of a
- * region, so the passes need no barrier between them. Walls keep their values. */
+/* The leapfrog loops of the cell-range loop's cases without the energy equation or variable h
+ * (fluid and fixed walls; no transport velocity or open boundaries), one contiguous pass per array
+ * so that they vectorise. Each thread keeps the particles of its static share through the passes of
+ * a region, so the passes need no barrier between them. Walls keep their values. */
 static double fast_kick_drift(ry_sim *sim, const wcsph *w, double dt, int cont) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
@@ -407,7 +407,7 @@ ry_status wc_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     size_t n = ps->n;
     /* Kick (half step) and drift; then predict v and rho at the new time for the forces. The
      * same loop measures the largest displacement since the last neighbour search. */
-    if (w->fast) {
+    if (w->fast && !wc_fast_general(w)) {
         ry_sim_drift_measured(sim, fast_kick_drift(sim, w, dt, cont));
         RY_TRY(evaluate(sim, w, err)); /* may reorder particles: fields move together */
         fast_final_kick(sim, w, dt, cont);
