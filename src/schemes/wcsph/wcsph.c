@@ -153,8 +153,11 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     ry_particles *ps = &sim->ps;
     static const char *const vh[3] = {"vhalf_x", "vhalf_y", "vhalf_z"};
     static const char *const vg[3] = {"vwall_x", "vwall_y", "vwall_z"};
+    w->lean = wc_lean(w);
     for (int d = 0; d < 3; ++d) {
-        RY_TRY(ry_particles_add_field(ps, vh[d], "m/s", d, RY_FIELD_SCRATCH, &w->f_vh[d], err));
+        w->f_vh[d] = -1; /* (the plain cell-range loop keeps no half-step fields: wc_lean) */
+        if (!w->lean)
+            RY_TRY(ry_particles_add_field(ps, vh[d], "m/s", d, RY_FIELD_SCRATCH, &w->f_vh[d], err));
         /* (the cell-range loop keeps the walls' ghost velocities in its records) */
         w->f_vg[d] = -1;
         if (!w->fast) RY_TRY(ry_particles_add_field(ps, vg[d], "m/s", d, 0, &w->f_vg[d], err));
@@ -168,8 +171,10 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
                 ry_particles_add_field(ps, ab[d], "m/s^2", d, RY_FIELD_STATE, &w->f_abg[d], err));
         }
     }
-    RY_TRY(ry_particles_add_field(ps, "density_half", "kg/m^3", -1, RY_FIELD_SCRATCH, &w->f_rhoh,
-                                  err));
+    w->f_rhoh = -1;
+    if (!w->lean)
+        RY_TRY(ry_particles_add_field(ps, "density_half", "kg/m^3", -1, RY_FIELD_SCRATCH,
+                                      &w->f_rhoh, err));
     w->f_eh = w->f_hh = -1; /* (only where they are integrated) */
     if (w->energy)
         RY_TRY(

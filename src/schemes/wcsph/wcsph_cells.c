@@ -30,6 +30,8 @@ typedef struct fast_ctx {
     const double *v[3], *rho0m;
     const uint8_t *material;
     double g[3], diff, rho_ref, inv_c02;
+    double hdt, hdt_rho; /* the predictions of wc_lean (0 otherwise) */
+    const uint8_t *halo; /* a distributed run's halo particles (NULL: none) */
     float rad2, inv_h, dnorm_h, c0, h0, kappa;
     wc_pair_k_f K; /* the pair term's constants */
     int cont, fourtakas, energy;
@@ -58,7 +60,7 @@ fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *
         const float s = c->h0 * inv_hij, s2 = s * s, sd = dim > 2 ? s2 * s2 * s : s2 * s2;
         const float q = sqrtf(r2) * inv_hij;
         const float fq = c->dnorm_h * sd * ry_kdshape_over_qf(kt, q);
-        fw = (r2 < c->rad2) & (q < c->kappa) ? fq : 0.0f;
+        fw = ((r2 < c->rad2) & (q < c->kappa)) ? fq : 0.0f;
     } else {
         const float fq = c->dnorm_h * ry_kdshape_over_qf(kt, sqrtf(r2) * c->inv_h);
         fw = r2 < c->rad2 ? fq : 0.0f;
@@ -104,7 +106,12 @@ fast_particle(const fast_ctx *restrict c, size_t i, const int dim, const ry_kern
     I.rho2 = 2.0f * (float)c->rho_ref + I.drho;
     I.prho2 = fk[FK_PRHO2 * fs + i];
     I.mu = fk[FK_MU * fs + i];
-    I.inv_rho = (float)(1.0 / c->rho[i]);
+    /* The predicted density and velocity (wc_lean; hdt = 0 otherwise), from the old rates
+     * before this particle's new ones replace them. */
+    const double rho_i = c->rho[i] + c->hdt_rho * c->drho[i];
+    double vs[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) vs[d] = c->v[d][i] + c->hdt * c->a[d][i];
+    I.inv_rho = (float)(1.0 / rho_i);
     /* The sound speed is c0 for the Tait and linear equations of state (constant), the
      * particles' own with the ideal gas (the general form). */
     I.cs = general ? fk[FK_CS * fs + i] : c->c0;
@@ -135,10 +142,11 @@ fast_particle(const fast_ctx *restrict c, size_t i, const int dim, const ry_kern
     for (int d = 0; d < dim; ++d) {
         c->a[d][i] = ai[d];
         a2 += ai[d] * ai[d];
-        v2 += c->v[d][i] * c->v[d][i];
+        v2 += vs[d] * vs[d];
     }
-    if (c->cont) c->drho[i] = c->rho[i] * wc_lanes_sum(sr) + c->diff * wc_lanes_sum(sd);
+    if (c->cont) c->drho[i] = rho_i * wc_lanes_sum(sr) + c->diff * wc_lanes_sum(sd);
     if (general && c->energy) c->de[i] = wc_lanes_sum(se);
+    if (c->halo && c->halo[i]) return; /* the largest values: owned particles only */
     *amax2 = a2 > *amax2 ? a2 : *amax2;
     *vmax2 = v2 > *vmax2 ? v2 : *vmax2;
 }
@@ -400,6 +408,9 @@ void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     c.inv_h = (float)k->inv_h;
     c.dnorm_h = (float)(k->dnorm / k->h);
     c.c0 = (float)w->c0;
+    c.hdt = w->hdt;
+    c.halo = sim->halo;
+    c.hdt_rho = c.cont ? w->hdt : 0.0;
     c.h0 = (float)k->h;
     c.kappa = (float)k->kappa;
     c.de = ps->f[RY_F_DE];
@@ -445,25 +456,34 @@ void wc_fpack_fluid(ry_sim *sim, const wcsph *w) {
     const double *restrict m = ps->f[RY_F_MASS];
     const ry_material *mat = sim->mat;
     float *restrict fk = w->fpack;
-    const double *v[3];
-    for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+    /* the predicted velocity and density of the fluid (wc_lean) */
+    const int pred = w->lean, pred_rho = w->lean && w->density == DENS_CONTINUITY;
+    const double hdt = w->hdt, *restrict dr = ps->f[RY_F_DRHO];
+    const double *v[3], *a[3];
+    for (int d = 0; d < 3; ++d) {
+        v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
+        a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
+    }
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
+        const int f = kind[i] == RY_KIND_FLUID;
         for (int d = 0; d < dim; ++d) {
             /* walls: rewritten by the wall pass */
-            fk[(FK_U + d) * fs + i] = fk[(FK_UG + d) * fs + i] = (float)v[d][i];
+            const double vs = pred && f ? v[d][i] + hdt * a[d][i] : v[d][i];
+            fk[(FK_U + d) * fs + i] = fk[(FK_UG + d) * fs + i] = (float)vs;
         }
         if (kind[i] == RY_KIND_WALL || kind[i] == RY_KIND_INLET) {
             /* Until the wall pass: inert, as the wall pass reads every candidate (masked). */
             for (int k = FK_DRHO; k < FK_COUNT; ++k) fk[(size_t)k * fs + i] = 0.0f;
             continue;
         }
-        if (kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, matl[i], rho[i], e ? e[i] : 0.0);
-        const double inv_rho = 1.0 / rho[i];
-        fk[FK_DRHO * fs + i] = (float)(rho[i] - rho_ref);
+        const double r = pred_rho && f ? rho[i] + hdt * dr[i] : rho[i];
+        if (f) p[i] = eos_pressure(w, matl[i], r, e ? e[i] : 0.0);
+        const double inv_rho = 1.0 / r;
+        fk[FK_DRHO * fs + i] = (float)(r - rho_ref);
         fk[FK_PRHO2 * fs + i] = (float)(p[i] * inv_rho * inv_rho);
         fk[FK_VOL * fs + i] = (float)(m[i] * inv_rho);
-        fk[FK_MU * fs + i] = laminar ? (float)(rho[i] * mat[matl[i]].viscosity) : 0.0f;
+        fk[FK_MU * fs + i] = laminar ? (float)(r * mat[matl[i]].viscosity) : 0.0f;
         fk[FK_MASS * fs + i] = (float)m[i];
         fk[FK_FLUID * fs + i] = kind[i] == RY_KIND_FLUID || kind[i] == RY_KIND_OUTLET;
         fk[FK_VISC * fs + i] = 1.0f; /* not a wall */
@@ -485,28 +505,39 @@ static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w) {
     const double c02 = w->c0 * w->c0;
     const int tait7 = w->eos == EOS_TAIT && w->gamma == 7.0, linear = w->eos == EOS_LINEAR;
     const double nu = w->laminar ? sim->mat[0].viscosity : 0.0;
+    /* the predicted velocity and density of the fluid (wc_lean) */
+    const int pred = w->lean, pred_rho = w->lean && w->density == DENS_CONTINUITY;
+    const double hdt = w->hdt, *restrict dr = ps->f[RY_F_DRHO];
 #pragma omp parallel
     {
         for (int d = 0; d < dim; ++d) {
-            const double *restrict v = ps->f[RY_F_VX + d];
+            const double *restrict v = ps->f[RY_F_VX + d], *restrict a = ps->f[RY_F_AX + d];
             float *restrict u = fk + (FK_U + d) * fs, *restrict ug = fk + (FK_UG + d) * fs;
+            if (pred) {
 #pragma omp for schedule(static) nowait
-            for (size_t i = 0; i < n; ++i) {
-                u[i] = ug[i] = (float)v[i]; /* walls: rewritten by the wall pass */
+                for (size_t i = 0; i < n; ++i) {
+                    const double vs = kind[i] == RY_KIND_FLUID ? v[i] + hdt * a[i] : v[i];
+                    u[i] = ug[i] = (float)vs; /* walls: rewritten by the wall pass */
+                }
+            } else {
+#pragma omp for schedule(static) nowait
+                for (size_t i = 0; i < n; ++i) u[i] = ug[i] = (float)v[i];
             }
         }
         if (tait7 || linear) {
 #pragma omp for schedule(static) nowait
             for (size_t i = 0; i < n; ++i) {
-                const double q = rho[i] / rho0, q2 = q * q;
-                const double pt =
-                    tait7 ? B * (q2 * q2 * q2 * q - 1.0) + pb : c02 * (rho[i] - rho0) + pb;
+                const double r =
+                    pred_rho && kind[i] == RY_KIND_FLUID ? rho[i] + hdt * dr[i] : rho[i];
+                const double q = r / rho0, q2 = q * q;
+                const double pt = tait7 ? B * (q2 * q2 * q2 * q - 1.0) + pb : c02 * (r - rho0) + pb;
                 p[i] = kind[i] == RY_KIND_FLUID ? pt : p[i];
             }
         } else {
 #pragma omp for schedule(static) nowait
             for (size_t i = 0; i < n; ++i)
-                if (kind[i] == RY_KIND_FLUID) p[i] = eos_pressure(w, 0, rho[i], 0.0);
+                if (kind[i] == RY_KIND_FLUID)
+                    p[i] = eos_pressure(w, 0, pred_rho ? rho[i] + hdt * dr[i] : rho[i], 0.0);
         }
         float *restrict fdr = fk + FK_DRHO * fs, *restrict fpr = fk + FK_PRHO2 * fs;
         float *restrict fvol = fk + FK_VOL * fs, *restrict fmu = fk + FK_MU * fs;
@@ -516,11 +547,12 @@ static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w) {
         for (size_t i = 0; i < n; ++i) {
             /* Walls stay inert until the wall pass (it reads every candidate, masked). */
             const float on = kind[i] == RY_KIND_WALL ? 0.0f : 1.0f;
-            const double inv_rho = 1.0 / rho[i];
-            fdr[i] = on * (float)(rho[i] - rho0);
+            const double r = pred_rho && kind[i] == RY_KIND_FLUID ? rho[i] + hdt * dr[i] : rho[i];
+            const double inv_rho = 1.0 / r;
+            fdr[i] = on * (float)(r - rho0);
             fpr[i] = on * (float)(p[i] * inv_rho * inv_rho);
             fvol[i] = on * (float)(m[i] * inv_rho);
-            fmu[i] = on * (float)(rho[i] * nu);
+            fmu[i] = on * (float)(r * nu);
             fm[i] = on * (float)m[i];
             ffl[i] = kind[i] == RY_KIND_FLUID ? 1.0f : 0.0f;
             fvi[i] = on;

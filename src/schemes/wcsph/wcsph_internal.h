@@ -34,6 +34,8 @@ typedef struct wcsph {
     double *scratch; /* per thread: the in-range neighbours of one particle, field by field */
     size_t scratch_cap;
     int fast;     /* the cell-range pair loop in single precision (scheme.pair_loop) */
+    int lean;     /* its plain form: no half-step fields (wc_lean) */
+    double hdt;   /* lean: dt/2 of the step under way (0 outside a step), see wc_lean */
     float *fpack; /* its per-particle data: FK_COUNT arrays of fpack_stride floats, padded,
                      64-byte aligned (the positions are the particles' own, padded in place) */
     size_t fpack_stride, fpack_cap;
@@ -115,6 +117,16 @@ enum {
 static inline int wc_fast_general(const wcsph *w) {
     return w->energy || w->variable_h || w->eos == EOS_IDEAL_GAS;
 }
+/* The plain cell-range loop (no energy equation or variable h) keeps no half-step fields: its
+ * first half kick leaves the half-step velocity and density v_{n+1/2}, rho_{n+1/2} in v and
+ * rho, and the evaluation forms the predicted values v* = v_{n+1/2} + dt/2 a_n and rho* =
+ * rho_{n+1/2} + dt/2 (drho/dt)_n where it reads them (the records, the pressure, the pair loop's
+ * rho_i and largest speed) before the new rates overwrite a_n; the second half kick adds
+ * dt/2 a_{n+1}. The same arithmetic as with the fields, 32 bytes per particle less. */
+static inline int wc_lean(const wcsph *w) {
+    return w->fast && !wc_fast_general(w);
+}
+
 /* The number of single-precision fields of the cell-range loop's records. */
 static inline int wc_fk_count(const wcsph *w) {
     return wc_fast_general(w) ? FK_COUNT_ALL : FK_COUNT;

@@ -205,7 +205,13 @@ static ry_status evaluate(ry_sim *sim, wcsph *w, ry_error *err) {
     RY_TRY(fluid_forces(sim, w, &res, err));
     if (w->st.model != RY_ST_NONE) RY_TRY(st_forces(sim, w, err));
     if (w->rheo.ob) polymer_forces(sim, w, &res);
-    if (sim->par) global_maxima(sim, &res);
+    if (sim->par && w->lean) {
+        /* (the loop's largest values are the owned particles'; v holds v_{n+1/2} here) */
+        res.amax2 = sim->par->max(sim, res.amax2);
+        res.vmax2 = sim->par->max(sim, res.vmax2);
+    } else if (sim->par) {
+        global_maxima(sim, &res);
+    }
     w->amax = sqrt(res.amax2);
     w->vmax = sqrt(res.vmax2);
     w->have_forces = 1;
@@ -306,7 +312,7 @@ static inline __attribute__((always_inline)) void final_kick(ry_sim *sim, const 
  * (fluid and fixed walls; no transport velocity or open boundaries), one contiguous pass per array
  * so that they vectorise. Each thread keeps the particles of its static share through the passes of
  * a region, so the passes need no barrier between them. Walls keep their values. */
-static double fast_kick_drift(ry_sim *sim, const wcsph *w, double dt, int cont) {
+static double fast_kick_drift(ry_sim *sim, double dt, int cont) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
@@ -315,28 +321,25 @@ static double fast_kick_drift(ry_sim *sim, const wcsph *w, double dt, int cont) 
     double m = 0;
 #pragma omp parallel
     {
+        /* v and rho keep the half-step values (wc_lean). */
         for (int d = 0; d < dim; ++d) {
             double *restrict x = ps->f[RY_F_X + d], *restrict v = ps->f[RY_F_VX + d];
-            double *restrict vh = ps->f[w->f_vh[d]];
             const double *restrict a = ps->f[RY_F_AX + d];
 #pragma omp for schedule(static) nowait
             for (size_t i = 0; i < n; ++i) {
                 const int f = kind[i] == RY_KIND_FLUID;
                 const double h = v[i] + hdt * a[i];
-                vh[i] = f ? h : vh[i];
                 x[i] = f ? x[i] + dt * h : x[i];
-                v[i] = f ? h + hdt * a[i] : v[i];
+                v[i] = f ? h : v[i];
             }
         }
         if (cont) {
-            double *restrict rho = ps->f[RY_F_RHO], *restrict rh = ps->f[w->f_rhoh];
+            double *restrict rho = ps->f[RY_F_RHO];
             const double *restrict dr = ps->f[RY_F_DRHO];
 #pragma omp for schedule(static) nowait
             for (size_t i = 0; i < n; ++i) {
                 const int f = kind[i] == RY_KIND_FLUID;
-                const double h = rho[i] + hdt * dr[i];
-                rh[i] = f ? h : rh[i];
-                rho[i] = f ? h + hdt * dr[i] : rho[i];
+                rho[i] = f ? rho[i] + hdt * dr[i] : rho[i];
             }
         }
         const double *restrict x0 = ps->f[RY_F_X], *restrict x1 = ps->f[RY_F_Y];
@@ -355,7 +358,7 @@ static double fast_kick_drift(ry_sim *sim, const wcsph *w, double dt, int cont) 
 }
 
 /* The second half kick and the guard check (src/core/guard_check.h) in one region. */
-static void fast_final_kick(ry_sim *sim, const wcsph *w, double dt, int cont) {
+static void fast_final_kick(ry_sim *sim, double dt, int cont) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
@@ -368,19 +371,20 @@ static void fast_final_kick(ry_sim *sim, const wcsph *w, double dt, int cont) {
     size_t bad = 0, fluid = 0, outside = 0;
 #pragma omp parallel
     {
+        /* from the half-step values in v and rho (wc_lean) */
         for (int d = 0; d < dim; ++d) {
             double *restrict v = ps->f[RY_F_VX + d];
-            const double *restrict vh = ps->f[w->f_vh[d]], *restrict a = ps->f[RY_F_AX + d];
+            const double *restrict a = ps->f[RY_F_AX + d];
 #pragma omp for schedule(static) nowait
             for (size_t i = 0; i < n; ++i)
-                v[i] = kind[i] == RY_KIND_FLUID ? vh[i] + hdt * a[i] : v[i];
+                v[i] = kind[i] == RY_KIND_FLUID ? v[i] + hdt * a[i] : v[i];
         }
         if (cont) {
             double *restrict rho = ps->f[RY_F_RHO];
-            const double *restrict rh = ps->f[w->f_rhoh], *restrict dr = ps->f[RY_F_DRHO];
+            const double *restrict dr = ps->f[RY_F_DRHO];
 #pragma omp for schedule(static) nowait
             for (size_t i = 0; i < n; ++i)
-                rho[i] = kind[i] == RY_KIND_FLUID ? rh[i] + hdt * dr[i] : rho[i];
+                rho[i] = kind[i] == RY_KIND_FLUID ? rho[i] + hdt * dr[i] : rho[i];
         }
         const ry_check_ctx c = chk;
         const double inv0 = inv_rho0[0];
@@ -407,10 +411,13 @@ ry_status wc_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     size_t n = ps->n;
     /* Kick (half step) and drift; then predict v and rho at the new time for the forces. The
      * same loop measures the largest displacement since the last neighbour search. */
-    if (w->fast && !wc_fast_general(w)) {
-        ry_sim_drift_measured(sim, fast_kick_drift(sim, w, dt, cont));
-        RY_TRY(evaluate(sim, w, err)); /* may reorder particles: fields move together */
-        fast_final_kick(sim, w, dt, cont);
+    if (w->lean) {
+        ry_sim_drift_measured(sim, fast_kick_drift(sim, dt, cont));
+        w->hdt = 0.5 * dt; /* the evaluation predicts v and rho (wc_lean) */
+        const ry_status st = evaluate(sim, w, err); /* may reorder particles */
+        w->hdt = 0.0;
+        RY_TRY(st);
+        fast_final_kick(sim, dt, cont);
         return RY_OK;
     }
     const double *xref[3];
