@@ -4,8 +4,10 @@
 
 #include <math.h>
 
+#include "util/hd.h"
+
 /* Solves the symmetric d x d system m x = g (d = 2, 3); 0 when m is nearly singular. */
-static inline int ry_solve_small(int dim, double m[3][3], const double *g, double *x) {
+RY_HD static inline int ry_solve_small(int dim, double m[3][3], const double *g, double *x) {
     const double scale = m[0][0] + m[1][1] + (dim > 2 ? m[2][2] : 0.0);
     if (!(scale > 0)) return 0;
     if (dim == 2) {

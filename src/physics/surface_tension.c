@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "linalg/small.h"
+#include "physics/gradient_mps_koshizuka1996.h"
 #include "ryushi/surface_tension.h"
 
 const char *const ry_st_model_names[] = {"none", "csf", "potential", NULL};
@@ -512,13 +513,9 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
             for (int d = 0; d < dim; ++d) r2 += dx[d] * dx[d];
             if (r2 >= re2 || r2 <= 0) continue;
             const double wr = ry_mps_weight_tamai(sqrt(r2), st->re) / r2;
-            for (int a = 0; a < dim; ++a) {
-                const double dn = nrm[3 * j + a] - nrm[3 * i + a];
-                for (int b = 0; b < dim; ++b) {
-                    m[a][b] += wr * dx[a] * dx[b];
-                    h[a][b] += wr * dn * dx[b];
-                }
-            }
+            ry_grad_moment_add(m, wr, dx, dim);
+            for (int a = 0; a < dim; ++a)
+                ry_grad_value_add(h[a], wr, nrm[3 * j + a] - nrm[3 * i + a], dx, dim);
         }
         /* H[a][b] = d n_a / d x_b. RY_ST_CURV_SURFACE: the surface divergence
          * tr((I - n n) H) = div n - n.H.n. The normal part n.H.n (d|n|^2/2 along n, zero for

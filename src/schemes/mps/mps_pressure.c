@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "linalg/small.h"
+#include "physics/gradient_mps_koshizuka1996.h"
 #include "schemes/mps/mps_internal.h"
 
 /* A distributed run (sim->par): the linear systems span the ranks. Vectors of unknowns reach
@@ -311,11 +311,8 @@ void mps_correct(ry_sim *sim, mps *M, double dt) {
                     const uint32_t j = jj[k];
                     if (M->role[j] == ROLE_DUMMY || br2[k] <= 0) continue;
                     const double dx[3] = {bx[k], by[k], bz[k]}, wr = bwr[k];
-                    const double pj = grad_pressure(M, p, j, dx);
-                    for (int a = 0; a < 3; ++a) {
-                        g[a] += wr * (pj - pmin) * dx[a];
-                        for (int b = 0; b < 3; ++b) m[a][b] += wr * dx[a] * dx[b];
-                    }
+                    ry_grad_value_add(g, wr, grad_pressure(M, p, j, dx) - pmin, dx, 3);
+                    ry_grad_moment_add(m, wr, dx, 3);
                 }
             } else
                 for (size_t q = sim->nl.offset[i]; q < M->gend[i]; ++q) {
@@ -324,14 +321,10 @@ void mps_correct(ry_sim *sim, mps *M, double dt) {
                     const double r2 = ry_sim_separation(sim, i, j, dx);
                     if (M->role[j] == ROLE_DUMMY || r2 <= 0) continue;
                     const double w = ry_mps_weight_tamai(M->pr[q], re), wr = w / r2;
-                    const double pj = grad_pressure(M, p, j, dx);
-                    for (int a = 0; a < dim; ++a) {
-                        g[a] += wr * (pj - pmin) * dx[a];
-                        for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
-                    }
+                    ry_grad_value_add(g, wr, grad_pressure(M, p, j, dx) - pmin, dx, dim);
+                    ry_grad_moment_add(m, wr, dx, dim);
                 }
-            if (M->grad == GRAD_STANDARD || !ry_solve_small(dim, m, g, x))
-                for (int a = 0; a < dim; ++a) x[a] = dim * g[a] / M->n0g;
+            ry_mps_pressure_gradient(m, g, dim, M->n0g, M->grad != GRAD_STANDARD, x);
             for (int a = 0; a < dim; ++a) gx[dim * i + a] = x[a];
         }
         free(buf);

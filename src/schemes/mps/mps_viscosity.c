@@ -9,6 +9,7 @@
 
 #include "linalg/small.h"
 #include "ryushi/rheology.h"
+#include "physics/gradient_mps_koshizuka1996.h"
 #include "schemes/mps/mps_internal.h"
 
 /* Rheology (docs/rheology.md); the polymer stress by components as ry_tau_index says. */
@@ -53,12 +54,9 @@ static int corrected_gradient(const ry_sim *sim, const mps *M, size_t i, int flu
         const double r2 = ry_sim_separation(sim, i, j, dx);
         if (r2 <= 0) continue;
         const double wr = ry_mps_weight_tamai(M->pr[q], M->re_g) / r2;
-        for (int a = 0; a < dim; ++a)
-            for (int b = 0; b < dim; ++b) m[a][b] += wr * dx[a] * dx[b];
-        for (int c = 0; c < nc; ++c) {
-            const double dv = val(sim, M, i, j, c) - val(sim, M, i, i, c);
-            for (int b = 0; b < dim; ++b) g[c][b] += wr * dv * dx[b];
-        }
+        ry_grad_moment_add(m, wr, dx, dim);
+        for (int c = 0; c < nc; ++c)
+            ry_grad_value_add(g[c], wr, val(sim, M, i, j, c) - val(sim, M, i, i, c), dx, dim);
     }
     return ry_solve_rows(dim, m, nc, g, grad);
 }
