@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "schemes/iisph/iisph_internal.h"
+#include "schemes/iisph/iisph_pair.h"
 
 /* The pairs of the solve's iterations (grad_list), once per step: those pair_skip keeps. */
 ry_status iisph_grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
@@ -78,8 +79,7 @@ static inline void neighbour_pressure_sum(const iisph *s, const uint8_t *kind, c
                                           size_t i, double *a, int dim) {
     const grad_list *gl = &s->gl;
     for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-        const double f = neighbour_pressure(s, kind, p, i, gl->j[e]), *G = gl->g + 3 * e;
-        for (int d = 0; d < dim; ++d) a[d] += f * G[d];
+        iisph_pair_sum(a, neighbour_pressure(s, kind, p, i, gl->j[e]), gl->g + 3 * e, dim);
     }
 }
 
@@ -120,18 +120,32 @@ static inline double jacobi_rest(const iisph *s, const grad_list *gl, const uint
     for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
         const uint32_t j = gl->j[e];
         const double *G = gl->g + 3 * e;
-        double t = 0;
-        for (int d = 0; d < dim; ++d) t += si[d] * G[d];
+        double t = iisph_pair_jacobi(si, G, dim);
         if (MOBILE[kind[j]]) {
             /* D_j without the part from p_i: d_jj p_j + S_j - d_ji p_i (a heavy j of a light
              * row: none, j does not see i) */
-            const double *sj = s->sum + 3 * j, *djj = s->dii + 3 * j;
             const double cji = pair_force_mobile(s, kind, i, j) ? dt2 / (m[j] * di2) * p[i] : 0.0;
-            for (int d = 0; d < dim; ++d) t -= (djj[d] * p[j] + sj[d] - cji * G[d]) * G[d];
+            iisph_pair_jacobi_mobile(&t, s->sum + 3 * j, s->dii + 3 * j, p[j], cji, G, dim);
         }
         rest += t;
     }
     return rest;
+}
+
+/* Row i's sums of the predicted number density and of d_ii (inlined with a literal dim, so
+ * that the velocities stay in registers). */
+static inline __attribute__((always_inline)) void predict_row(const grad_list *gl,
+                                                              const double *const v[3], size_t i,
+                                                              double *dv, double *dii,
+                                                              const int dim) {
+    double vi[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) vi[d] = v[d][i];
+    for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
+        const uint32_t j = gl->j[e];
+        double vj[3] = {0, 0, 0};
+        for (int d = 0; d < dim; ++d) vj[d] = v[d][j];
+        iisph_pair_predict(dv, dii, vi, vj, gl->g + 3 * e, dim);
+    }
 }
 
 /* The pressure Poisson equation by relaxed Jacobi; returns the iterations. */
@@ -155,14 +169,10 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
         if (!MOBILE[kind[i]]) continue;
         double dv = 0, dii[3] = {0, 0, 0};
         const double di2 = delta[i] * delta[i];
-        for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-            const uint32_t j = gl->j[e];
-            const double *G = gl->g + 3 * e;
-            for (int d = 0; d < dim; ++d) {
-                dv += (v[d][i] - v[d][j]) * G[d];
-                dii[d] += G[d];
-            }
-        }
+        if (dim == 3)
+            predict_row(gl, v, i, &dv, dii, 3);
+        else
+            predict_row(gl, v, i, &dv, dii, 2);
         /* Only compression is corrected: an expanded particle (free surface, splash) asks for
          * no tension, which the non-negative pressure could not give. */
         s->dstar[i] = delta[i] + dt * dv;
@@ -179,15 +189,9 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
         double a = 0;
         for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
             const uint32_t j = gl->j[e];
-            const double *G = gl->g + 3 * e;
-            double g2 = 0, dg = 0;
-            for (int d = 0; d < dim; ++d) {
-                dg += dii[d] * G[d];
-                g2 += G[d] * G[d];
-            }
-            a += dg;
             /* - d_ji . grad_i W_ij, d_ji = -(dt^2 / m_j) grad_j W_ji / delta_i^2 */
-            if (pair_force_mobile(s, kind, i, j)) a -= dt2 / (m[j] * di2) * g2;
+            const int mobile = pair_force_mobile(s, kind, i, j);
+            iisph_pair_aii(&a, dii, gl->g + 3 * e, mobile, mobile ? dt2 / (m[j] * di2) : 0.0, dim);
         }
         s->aii[i] = a;
     }
@@ -285,10 +289,9 @@ void iisph_pressure_force(ry_sim *sim, iisph *s, double dt, double *vmax2_out, d
         if (!MOBILE[ps->kind[i]]) continue;
         const double pi = p[i] / (delta[i] * delta[i]);
         double a[3] = {0, 0, 0};
-        for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-            const double pj = neighbour_pressure(s, ps->kind, p, i, gl->j[e]), *G = gl->g + 3 * e;
-            for (int d = 0; d < dim; ++d) a[d] -= (pi + pj) * G[d];
-        }
+        for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e)
+            iisph_pair_pressure(a, pi, neighbour_pressure(s, ps->kind, p, i, gl->j[e]),
+                                gl->g + 3 * e, dim);
         double a2 = 0, v2 = 0;
         for (int d = 0; d < dim; ++d) {
             a[d] /= m[i];
