@@ -8,6 +8,7 @@
 
 #include "ryushi/corrected.h"
 #include "schemes/solid/solid_internal.h"
+#include "schemes/solid/solid_pair.h"
 
 size_t ry_solid_reverse_pair(const ry_nlist *nl, size_t i, size_t j) {
     size_t lo = nl->offset[j], hi = nl->offset[j + 1];
@@ -233,12 +234,7 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) 
         const double *gij = s->G + q * (size_t)dim, *gji = s->G + s->rev[q] * (size_t)dim;
         const double *Aj = s->A + 9 * j;
         const double vj = s->vol[j];
-        for (int a = 0; a < dim; ++a) {
-            double t = 0;
-            for (int b = 0; b < dim; ++b)
-                t += vi * Ai[3 * a + b] * gij[b] - vj * Aj[3 * a + b] * gji[b];
-            f[a] += t;
-        }
+        ry_solid_tl_pair(f, Ai, vi, gij, Aj, vj, gji, dim);
         if (s->H) { /* strain-gradient stresses through the second-derivative weights */
             const double *hij = s->H + q * (size_t)(dim * dim);
             const double *hji = s->H + s->rev[q] * (size_t)(dim * dim);
@@ -255,13 +251,12 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) 
         if (hg > 0) {
             /* e_ij = x_j - x_i - (F_i + F_j)/2 (X_j - X_i) */
             const double *Fj = s->F + 9 * j, cij = s->hgc[q];
-            double Xji[3];
-            for (int a = 0; a < dim; ++a) Xji[a] = X[a][j] - X[a][i];
+            double Xji[3] = {0, 0, 0}, xji[3] = {0, 0, 0};
             for (int a = 0; a < dim; ++a) {
-                double e = x[a][j] - x[a][i];
-                for (int b = 0; b < dim; ++b) e -= 0.5 * (Fi[3 * a + b] + Fj[3 * a + b]) * Xji[b];
-                fh[a] += cij * e;
+                Xji[a] = X[a][j] - X[a][i];
+                xji[a] = x[a][j] - x[a][i];
             }
+            ry_solid_tl_hourglass(fh, xji, Xji, Fi, Fj, cij, dim);
         }
     }
     for (int a = 0; a < dim; ++a) f[a] += vi * hg * fh[a];

@@ -40,7 +40,9 @@
 #include <string.h>
 
 #include "ryushi/corrected.h"
+#include "physics/artificial_viscosity_monaghan1992.h"
 #include "schemes/solid/solid_internal.h"
+#include "schemes/solid/solid_pair.h"
 
 /* Components of the symmetric deviatoric stress: xx, yy, zz, xy, xz, yz. */
 static const int comp_a[6] = {0, 1, 2, 0, 0, 1}, comp_b[6] = {0, 1, 2, 1, 2, 2};
@@ -302,11 +304,7 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) 
                 wj[a] = -vj * gji[a];
             }
         } else { /* V_i V_j L grad W_ij */
-            for (int a = 0; a < dim; ++a)
-                for (int b = 0; b < dim; ++b) {
-                    wi[a] += vi * vj * Li[3 * a + b] * g[b];
-                    wj[a] += vi * vj * Lj[3 * a + b] * g[b];
-                }
+            ry_solid_ul_weights(Li, Lj, vi, vj, g, wi, wj, dim);
         }
         double fn = 0, pi = 0;
         if (face && ps->kind[j] != RY_KIND_SOLID) { /* the clamp face holds no stress */
@@ -318,18 +316,10 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) 
             const double w = ry_kernel_w(k, r) * iwdx;
             fn = expo == 4.0 ? (w * w) * (w * w) : pow(w, expo);
         }
-        if (vd < 0) {
-            const double mu = h * vd / (r2 + 0.01 * h * h);
-            pi = (-s->av_alpha * c * mu + s->av_beta * mu * mu) / (0.5 * (rho[i] + rho[j]));
-        }
-        for (int a = 0; a < dim; ++a) {
-            double t = 0, u = 0;
-            for (int b = 0; b < dim; ++b) {
-                t += si[3 * a + b] * wi[b] + sj[3 * a + b] * wj[b];
-                u += (Ri[3 * a + b] + Rj[3 * a + b]) * g[b];
-            }
-            f[a] += t + mm * (fn * u - pi * g[a]);
-        }
+        if (vd < 0) /* (c the P-wave speed; eta^2 = 0.01 h^2) */
+            pi = ry_monaghan_pi(vd, 1.0 / (r2 + 0.01 * h * h), h, c, rho[i] + rho[j], s->av_alpha,
+                                s->av_beta);
+        ry_solid_ul_pair(f, si, wi, sj, wj, Ri, Rj, g, mm, fn, pi, dim);
     }
     ry_solid_accelerate(sim, s, i, f, dim);
 }

@@ -27,19 +27,24 @@
 #ifndef RY_SCHEMES_WCSPH_PAIR_H
 #define RY_SCHEMES_WCSPH_PAIR_H
 
+#include "physics/artificial_viscosity_monaghan1992.h"
 #include "util/hd.h"
 
 #define RY_C(x) ((RY_REAL)(x))
 
 #define RY_REAL double
 #define RY_PAIR(name) name##_d
+#define RY_PAIR_AV ry_monaghan_pi
 #include "schemes/wcsph/wcsph_pair_body.h"
+#undef RY_PAIR_AV
 #undef RY_PAIR
 #undef RY_REAL
 
 #define RY_REAL float
 #define RY_PAIR(name) name##_f
+#define RY_PAIR_AV ry_monaghan_pif
 #include "schemes/wcsph/wcsph_pair_body.h"
+#undef RY_PAIR_AV
 #undef RY_PAIR
 #undef RY_REAL
 #undef RY_C

@@ -63,10 +63,8 @@ RY_HD static inline RY_PAIR(wc_pair_out)
     if (dim > 2) vdw += (I->uz - J->uz) * dz;
     const RY_REAL ieta = RY_C(1.0) / (r2 + K->eta2);
     /* Monaghan's artificial viscosity, active for approaching pairs only. */
-    const RY_REAL mu_ij = K->h * (vdx < zero ? vdx : zero) * ieta;
-    const RY_REAL c_ij = RY_C(0.5) * (I->cs + J->cs);
-    const RY_REAL pi_ij =
-        (-K->alpha * c_ij + K->beta * mu_ij) * mu_ij * RY_C(2.0) / (I->rho2 + J->drho);
+    const RY_REAL pi_ij = RY_PAIR_AV(vdx, ieta, K->h, RY_C(0.5) * (I->cs + J->cs),
+                                     I->rho2 + J->drho, K->alpha, K->beta);
     const RY_REAL pterm = I->prho2 + J->prho2 + pi_ij;
     RY_REAL fp = -J->mass * pterm;
     /* The Morris weight L_ij, and mu_ij L_ij / rho_i (a wall takes the fluid's viscosity). */
