@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "physics/gradient_mps_koshizuka1996.h"
+#include "physics/laplacian_mps_koshizuka1996.h"
 #include "schemes/mps/mps_internal.h"
 
 /* A distributed run (sim->par): the linear systems span the ranks. Vectors of unknowns reach
@@ -48,7 +49,7 @@ ry_status mps_assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double dt,
                        ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    const double re = M->re_l, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
+    const double re = M->re_l, cl = ry_mps_laplacian_coefficient(sim->dim, M->lambda, M->n0l);
     /* Row lengths (diagonal included) in parallel, their offsets, then the rows. */
     ry_csr *A = &M->A;
     RY_TRY(ry_csr_reserve(A, nunk, 0, err));
@@ -208,7 +209,7 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
             if (M->role[i] == ROLE_SURFACE)
                 for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) near[M->pj[q]] = 1;
     }
-    const double rel = M->re_l, cl = 2.0 * sim->dim / (M->lambda * M->n0l);
+    const double rel = M->re_l, cl = ry_mps_laplacian_coefficient(sim->dim, M->lambda, M->n0l);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;

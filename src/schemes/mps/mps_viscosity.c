@@ -10,6 +10,7 @@
 #include "linalg/small.h"
 #include "ryushi/rheology.h"
 #include "physics/gradient_mps_koshizuka1996.h"
+#include "physics/laplacian_mps_koshizuka1996.h"
 #include "schemes/mps/mps_internal.h"
 
 /* Rheology (docs/rheology.md); the polymer stress by components as ry_tau_index says. */
@@ -174,7 +175,7 @@ void mps_viscous_explicit(ry_sim *sim, const mps *M) {
     ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
     const size_t n = ps->n;
-    const double cl = 2.0 * dim / (M->lambda * M->n0l);
+    const double cl = ry_mps_laplacian_coefficient(dim, M->lambda, M->n0l);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
@@ -195,7 +196,7 @@ static size_t viscous_split(ry_sim *sim, mps *M, double dt, int with_st) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
-    const double cl = 2.0 * dim / (M->lambda * M->n0l);
+    const double cl = ry_mps_laplacian_coefficient(dim, M->lambda, M->n0l);
     double *a[3];
     for (int d = 0; d < 3; ++d) a[d] = ps->f[RY_F_AX + (d < dim ? d : 0)];
 #pragma omp parallel for schedule(dynamic, 64)
@@ -234,7 +235,7 @@ ry_status mps_viscous_implicit(ry_sim *sim, mps *M, double dt, int with_st, ry_e
         for (size_t i = 0; i < n; ++i)
             M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
     RY_TRY(mps_assemble(sim, M, nunk, 1, dt, 1.0, err));
-    const double re = M->re_l, cl = 2.0 * dim / (M->lambda * M->n0l);
+    const double re = M->re_l, cl = ry_mps_laplacian_coefficient(dim, M->lambda, M->n0l);
     /* the components' right-hand sides and solutions: b and xs from d nunk */
     const double *bs[3];
     double *xv[3];

@@ -1,5 +1,6 @@
-/* Unit tests of the MPS gradient (src/physics/gradient_mps_koshizuka1996.h), shared by the MPS
- * pressure correction, MPS rheology and the surface-tension curvature:
+/* Unit tests of the MPS operators: the gradient (src/physics/gradient_mps_koshizuka1996.h),
+ * shared by the MPS pressure correction, MPS rheology and the surface-tension curvature, and
+ * the Laplacian's coefficient (src/physics/laplacian_mps_koshizuka1996.h):
  *
  *   - the corrected form on hand-placed, one-sided neighbourhoods (2D and 3D, Tamai's weight,
  *     re = 2.1 l0) recovers the gradient of a linear field exactly: within 1e-12 relative (a
@@ -9,7 +10,10 @@
  *     (the lattice's moment matrix is n0 / d times the identity): within 1e-12;
  *   - with the neighbours on one line the moment matrix is singular and the pressure form
  *     falls back to the standard one: d/n0 sum_j (w/r^2) df x_ji, computed here by hand (in
- *     another order), within 1e-14 relative. */
+ *     another order), within 1e-14 relative;
+ *   - the Laplacian 2d/(lambda n0) sum_j (f_j - f_i) w_ij of f = a x^2 + b y^2 (+ c z^2) on the
+ *     full square and cubic lattice within re = 3.1 l0, with the lattice's n0 and lambda, is
+ *     2 (a + b + c), exact for a quadratic (lambda is defined so): within 1e-12. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -19,6 +23,7 @@
 #include <cmocka.h>
 
 #include "physics/gradient_mps_koshizuka1996.h"
+#include "physics/laplacian_mps_koshizuka1996.h"
 #include "ryushi/mps.h"
 
 static const double l0 = 0.01, re = 2.1 * 0.01;
@@ -114,11 +119,36 @@ static void test_fallback_when_singular(void **state) {
     assert_true(out[1] == 0.0);
 }
 
+static void test_laplacian_on_lattice(void **state) {
+    (void)state;
+    const double rl = 3.1 * l0, c[3] = {1.5, -0.5, 2.0};
+    for (int dim = 2; dim <= 3; ++dim) {
+        double n0, lambda;
+        ry_mps_lattice(dim, l0, rl, &n0, &lambda);
+        double s = 0;
+        for (int i = -3; i <= 3; ++i)
+            for (int j = -3; j <= 3; ++j)
+                for (int k = (dim > 2 ? -3 : 0); k <= (dim > 2 ? 3 : 0); ++k) {
+                    const double x[3] = {i * l0, j * l0, k * l0};
+                    const double r = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+                    if (r == 0 || r >= rl) continue;
+                    double f = 0; /* f_j - f_i, f_i = 0 at the origin */
+                    for (int d = 0; d < dim; ++d) f += c[d] * x[d] * x[d];
+                    s += f * ry_mps_weight_tamai(r, rl);
+                }
+        const double lap = ry_mps_laplacian_coefficient(dim, lambda, n0) * s;
+        const double want = 2.0 * (c[0] + c[1] + (dim > 2 ? c[2] : 0.0));
+        print_message("%dD lattice: Laplacian %.15g, exact %.15g\n", dim, lap, want);
+        assert_true(fabs(lap - want) <= 1e-12 * fabs(want));
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_corrected_one_sided),
         cmocka_unit_test(test_standard_on_lattice),
         cmocka_unit_test(test_fallback_when_singular),
+        cmocka_unit_test(test_laplacian_on_lattice),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
