@@ -1,5 +1,6 @@
-/* The pair terms of the SPH solids' momentum equations (docs/solid.md), for particle i and
- * neighbour j, stresses as 3 x 3 arrays in row-major order:
+/* The pair terms of the SPH solids (docs/solid.md), for particle i and neighbour j, tensors as
+ * 3 x 3 arrays in row-major order: the velocity gradient and correction moment of the updated
+ * Lagrangian's rates pass (below), and the momentum equations:
  *
  *   updated Lagrangian (Gray, Monaghan & Swift 2001; seed 000 eq. 14-18):
  *     m_i dv_i/dt gains  sigma_i w_i + sigma_j w_j + m_i m_j (f_ij^n (R_i + R_j) - Pi_ij I) grad_i
@@ -18,6 +19,19 @@
 #define RY_SCHEMES_SOLID_PAIR_H
 
 #include "util/hd.h"
+
+/* The rates pass of the updated Lagrangian (seed 000 eq. 10-12): with g = V_j grad_i W_ij
+ * (or a quadratic fit's weight G_ij), the velocity gradient's pair (v_j - v_i) (x) g into Lv and
+ * the linear correction's moment g (x) (x_j - x_i) into B (L_i = B^-1). */
+RY_HD static inline void ry_solid_gradient_add(double *Lv, const double *dv, const double *g,
+                                               int dim) {
+    for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) Lv[3 * a + b] += dv[a] * g[b];
+}
+RY_HD static inline void ry_solid_moment_add(double *B, const double *g, const double *d, int dim) {
+    for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) B[3 * a + b] += g[a] * d[b];
+}
 
 /* The linear-corrected weights w_i = V_i V_j L_i g and w_j = V_i V_j L_j g (g = grad_i W_ij),
  * added to wi and wj. */

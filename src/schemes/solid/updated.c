@@ -174,9 +174,9 @@ RY_SOLID_INLINE void rates_dim(ry_sim *sim, solid *s, size_t i, double dt, const
             memset(Gi, 0, nn * (size_t)dim * sizeof *Gi);
         for (size_t q = o; q < o + nn; ++q) {
             const size_t j = sim->nl.j[q];
-            for (int a = 0; a < dim; ++a)
-                for (int b = 0; b < dim; ++b)
-                    Lv[3 * a + b] += (v[a][j] - v[a][i]) * Gi[(q - o) * (size_t)dim + b];
+            double dv[3] = {0, 0, 0};
+            for (int a = 0; a < dim; ++a) dv[a] = v[a][j] - v[a][i];
+            ry_solid_gradient_add(Lv, dv, Gi + (q - o) * (size_t)dim, dim);
         }
     }
     for (size_t q = o; q < o + nn && !quad; ++q) {
@@ -190,13 +190,10 @@ RY_SOLID_INLINE void rates_dim(ry_sim *sim, solid *s, size_t i, double dt, const
         const double r = sqrt(r2), f = -ry_kernel_dwdr(k, r) / r, vj = mass[j] / rho[j];
         double g[3]; /* V_j grad_i W_ij */
         for (int a = 0; a < dim; ++a) g[a] = vj * f * d[a];
-        for (int a = 0; a < dim; ++a) {
-            const double dva = v[a][j] - v[a][i];
-            for (int b = 0; b < dim; ++b) {
-                B[3 * a + b] += g[a] * d[b];
-                Lv[3 * a + b] += dva * g[b];
-            }
-        }
+        double dv[3] = {0, 0, 0};
+        for (int a = 0; a < dim; ++a) dv[a] = v[a][j] - v[a][i];
+        ry_solid_moment_add(B, g, d, dim);
+        ry_solid_gradient_add(Lv, dv, g, dim);
     }
     ry_error e1;
     if (!corr || quad || ry_mat_inverse(dim, B, L, &e1) != RY_OK) {
