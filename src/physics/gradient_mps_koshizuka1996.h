@@ -1,7 +1,8 @@
 /* The gradient of MPS (Koshizuka & Oka 1996, Nucl. Sci. Eng. 123: 421; seed 003 eq. 5) and its
  * corrected, least-squares form (Iribe & Nakaza), for the MPS pressure correction (scheme mps),
  * the velocity and stress gradients of MPS rheology and the curvature of the surface-tension
- * models (the gradient of the normals):
+ * models (the gradient of the normals); and the divergence of the same family (eq. 6, the
+ * source of the pressure equation):
  *
  *   standard:  <grad f>_i = d/n0 sum_j (f_j - f^_i) x_ji / r^2 w_ij
  *   corrected: <grad f>_i = C_i^-1 sum_j (f_j - f^_i) x_ji / r^2 w_ij,
@@ -31,6 +32,15 @@ RY_HD static inline void ry_grad_moment_add(double m[3][3], double w_over_r2, co
 RY_HD static inline void ry_grad_value_add(double *g, double w_over_r2, double df, const double *dx,
                                            int dim) {
     for (int b = 0; b < dim; ++b) g[b] += w_over_r2 * df * dx[b];
+}
+
+/* The divergence of MPS (eq. 6), <div u>_i = d/n0 sum_j (u_j - u_i) . x_ji / r^2 w_ij: the
+ * pair's term from du = (u_j - u_i) . x_ji, r^2 and w_ij, and the finish from the sum. */
+RY_HD static inline double ry_mps_divergence_term(double du, double r2, double w) {
+    return du / r2 * w;
+}
+RY_HD static inline double ry_mps_divergence(double sum, int dim, double n0) {
+    return dim * sum / n0;
 }
 
 /* The pressure gradient from the sums into out[0..dim-1]: corrected where `corrected` and C_i is

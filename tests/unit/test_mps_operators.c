@@ -11,6 +11,9 @@
  *   - with the neighbours on one line the moment matrix is singular and the pressure form
  *     falls back to the standard one: d/n0 sum_j (w/r^2) df x_ji, computed here by hand (in
  *     another order), within 1e-14 relative;
+ *   - the divergence d/n0 sum_j (u_j - u_i) . x_ji / r^2 w_ij of a linear field u = A x on the
+ *     full lattice within re is tr A (the lattice's moment matrix is n0 / d times the
+ *     identity): within 1e-12;
  *   - the Laplacian 2d/(lambda n0) sum_j (f_j - f_i) w_ij of f = a x^2 + b y^2 (+ c z^2) on the
  *     full square and cubic lattice within re = 3.1 l0, with the lattice's n0 and lambda, is
  *     2 (a + b + c), exact for a quadratic (lambda is defined so): within 1e-12. */
@@ -119,6 +122,31 @@ static void test_fallback_when_singular(void **state) {
     assert_true(out[1] == 0.0);
 }
 
+static void test_divergence_on_lattice(void **state) {
+    (void)state;
+    const double A[3][3] = {{0.7, -1.0, 0.3}, {2.0, -0.2, 0.5}, {0.1, 0.4, 1.1}};
+    for (int dim = 2; dim <= 3; ++dim) {
+        double n0, lambda;
+        ry_mps_lattice(dim, l0, re, &n0, &lambda);
+        double s = 0, tr = 0;
+        for (int d = 0; d < dim; ++d) tr += A[d][d];
+        for (int i = -2; i <= 2; ++i)
+            for (int j = -2; j <= 2; ++j)
+                for (int k = (dim > 2 ? -2 : 0); k <= (dim > 2 ? 2 : 0); ++k) {
+                    const double x[3] = {i * l0, j * l0, k * l0};
+                    const double r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+                    if (r2 == 0 || sqrt(r2) >= re) continue;
+                    double du = 0; /* (u_j - u_i) . x_ji with u_i = 0 */
+                    for (int a = 0; a < dim; ++a)
+                        for (int b = 0; b < dim; ++b) du += A[a][b] * x[b] * x[a];
+                    s += ry_mps_divergence_term(du, r2, ry_mps_weight_tamai(sqrt(r2), re));
+                }
+        const double div = ry_mps_divergence(s, dim, n0);
+        print_message("%dD lattice: divergence %.15g, tr A %.15g\n", dim, div, tr);
+        assert_true(fabs(div - tr) <= 1e-12 * fabs(tr));
+    }
+}
+
 static void test_laplacian_on_lattice(void **state) {
     (void)state;
     const double rl = 3.1 * l0, c[3] = {1.5, -0.5, 2.0};
@@ -145,9 +173,8 @@ static void test_laplacian_on_lattice(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_corrected_one_sided),
-        cmocka_unit_test(test_standard_on_lattice),
-        cmocka_unit_test(test_fallback_when_singular),
+        cmocka_unit_test(test_corrected_one_sided),    cmocka_unit_test(test_standard_on_lattice),
+        cmocka_unit_test(test_fallback_when_singular), cmocka_unit_test(test_divergence_on_lattice),
         cmocka_unit_test(test_laplacian_on_lattice),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -7,7 +7,8 @@
  *     is minus the force on i from j (g_ji = -g_ij, the roles swapped), within 1e-15 of the
  *     force's size;
  *   - the total-Lagrangian pair against V_i A_i G_ij - V_j A_j G_ji and its antisymmetry with
- *     unrelated G_ij and G_ji (exact: the same products);
+ *     unrelated G_ij and G_ji (exact: the same products); the same for the strain-gradient
+ *     pair sum_k V Q_k H_k;
  *   - the hourglass penalty vanishes for an affine motion x = F X (to rounding, 1e-15 of
  *     |x_ji|) and equals c_ij (x_ji - F X_ji) by hand for a perturbed one (1e-11: a difference
  *     a thousand times smaller than x_ji);
@@ -81,6 +82,29 @@ static void test_total_lagrangian(void **state) {
     for (int a = 0; a < 3; ++a) {
         assert_true(fabs(f[a] - hf[a]) <= 1e-14 * norm3(hf));
         assert_true(f[a] == -f2[a]);
+    }
+    /* strain-gradient pair: Q_k = (k + 1) si (3 x 3 each), H rows k = G scaled */
+    double Qi[27], Qj[27], hij[9], hji[9];
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 9; ++c) {
+            Qi[9 * k + c] = (k + 1) * si[c];
+            Qj[9 * k + c] = (k + 2) * sj[c];
+        }
+    for (int k = 0; k < 3; ++k)
+        for (int b = 0; b < 3; ++b) {
+            hij[3 * k + b] = (k + 1) * gij[b];
+            hji[3 * k + b] = (2 - k) * gji[b] + 1e3;
+        }
+    double q[3] = {0, 0, 0}, q2[3] = {0, 0, 0}, hq[3] = {0, 0, 0};
+    ry_solid_tl_strain_gradient_pair(q, Qi, vi, hij, Qj, vj, hji, 3);
+    ry_solid_tl_strain_gradient_pair(q2, Qj, vj, hji, Qi, vi, hij, 3);
+    for (int k = 0; k < 3; ++k) {
+        matvec_add(hq, Qi + 9 * k, hij + 3 * k, vi);
+        matvec_add(hq, Qj + 9 * k, hji + 3 * k, -vj);
+    }
+    for (int a = 0; a < 3; ++a) {
+        assert_true(fabs(q[a] - hq[a]) <= 1e-14 * norm3(hq));
+        assert_true(q[a] == -q2[a]);
     }
 }
 

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "neighbor/r2_simd.h"
+#include "physics/gradient_mps_koshizuka1996.h"
 #include "ryushi/mps.h"
 #include "schemes/mps/mps_internal.h"
 
@@ -203,9 +204,9 @@ static double divergence(const ry_sim *sim, const mps *M, size_t i) {
         const double *const *u = ps->kind[j] == RY_KIND_FLUID ? us : uv;
         double du = 0;
         for (int d = 0; d < dim; ++d) du += (u[d][j] - ui[d]) * dx[d];
-        s += du / r2 * ry_mps_weight_tamai(M->pr[q], re);
+        s += ry_mps_divergence_term(du, r2, ry_mps_weight_tamai(M->pr[q], re));
     }
-    return sim->dim * s / M->n0g;
+    return ry_mps_divergence(s, sim->dim, M->n0g);
 }
 
 /* divergence() of particle i as a vector loop and a sum (3D, no periodic side): u[d] the
@@ -229,12 +230,12 @@ static double divergence_lanes(const ry_sim *sim, const mps *M, size_t i, const 
         du += (u[2][j] - ui2) * e2;
         const double r2 = e0 * e0 + e1 * e1 + e2 * e2, sr = rr[k] / re - 1.0;
         br2[k] = r2;
-        bt[k] = du / r2 * (rr[k] < re ? sr * sr : 0.0);
+        bt[k] = ry_mps_divergence_term(du, r2, rr[k] < re ? sr * sr : 0.0);
     }
     double s = 0;
     for (size_t k = 0; k < nb; ++k)
         if (br2[k] > 0) s += bt[k];
-    return 3 * s / M->n0g;
+    return ry_mps_divergence(s, 3, M->n0g);
 }
 
 /* Number density (ratio n/n0) of every particle at the current positions, and the roles: free

@@ -9,7 +9,8 @@
  *     stress R (Monaghan 2000) and the artificial viscosity Pi_ij
  *     (physics/artificial_viscosity_monaghan1992.h);
  *   total Lagrangian: f_i gains V_i A_i G_ij - V_j A_j G_ji (A the first Piola-Kirchhoff stress,
- *     G the corrected reference gradients), and the hourglass penalty c_ij e_ij with
+ *     G the corrected reference gradients), the strain-gradient stresses' pair through the
+ *     second-derivative weights, and the hourglass penalty c_ij e_ij with
  *     e_ij = x_j - x_i - (F_i + F_j)/2 (X_j - X_i) (Ganzenmueller 2015).
  *
  * Each function adds the pair's share to its sum, component by component; the traversals (the
@@ -67,6 +68,23 @@ RY_HD static inline void ry_solid_tl_pair(double *f, const double *Ai, double vi
         double t = 0;
         for (int b = 0; b < dim; ++b)
             t += vi * Ai[3 * a + b] * gij[b] - vj * Aj[3 * a + b] * gji[b];
+        f[a] += t;
+    }
+}
+
+/* The strain-gradient stresses' pair (docs/solid.md, strain-gradient cell integration):
+ * sum_k V_i Q_i,k H_ij,k - V_j Q_j,k H_ji,k into f, with Q_k (3 x 3 each, k < dim) the
+ * stresses that act through the quadratic fit's second-derivative weights H (dim x dim per
+ * pair, row k). */
+RY_HD static inline void ry_solid_tl_strain_gradient_pair(double *f, const double *Qi, double vi,
+                                                          const double *hij, const double *Qj,
+                                                          double vj, const double *hji, int dim) {
+    for (int a = 0; a < dim; ++a) {
+        double t = 0;
+        for (int k = 0; k < dim; ++k)
+            for (int b = 0; b < dim; ++b)
+                t += vi * Qi[9 * k + 3 * a + b] * hij[dim * k + b] -
+                     vj * Qj[9 * k + 3 * a + b] * hji[dim * k + b];
         f[a] += t;
     }
 }

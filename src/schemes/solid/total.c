@@ -238,15 +238,8 @@ RY_SOLID_INLINE void forces_dim(ry_sim *sim, solid *s, size_t i, const int dim) 
         if (s->H) { /* strain-gradient stresses through the second-derivative weights */
             const double *hij = s->H + q * (size_t)(dim * dim);
             const double *hji = s->H + s->rev[q] * (size_t)(dim * dim);
-            const double *Qi = s->Q + 27 * i, *Qj = s->Q + 27 * j;
-            for (int a = 0; a < dim; ++a) {
-                double t = 0;
-                for (int k = 0; k < dim; ++k)
-                    for (int b = 0; b < dim; ++b)
-                        t += vi * Qi[9 * k + 3 * a + b] * hij[dim * k + b] -
-                             vj * Qj[9 * k + 3 * a + b] * hji[dim * k + b];
-                f[a] += t;
-            }
+            ry_solid_tl_strain_gradient_pair(f, s->Q + 27 * i, vi, hij, s->Q + 27 * j, vj, hji,
+                                             dim);
         }
         if (hg > 0) {
             /* e_ij = x_j - x_i - (F_i + F_j)/2 (X_j - X_i) */
