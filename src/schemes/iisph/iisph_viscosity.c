@@ -16,6 +16,17 @@ static inline double dyn_viscosity(const ry_sim *sim, const iisph *s, size_t i) 
     return s->mu_corr * (s->rheo.on ? sim->mat[m].density * sim->ps.f[s->rheo.f_nu][i] : s->mu[m]);
 }
 
+/* The Morris coefficient mu_ij L_ij (physics/viscosity_morris1997.h, twice the harmonic mean of
+ * the viscosities) of a cached pair P (its separation, kernel gradient and r^2) with the
+ * volume vj of j. */
+static inline double morris_pair(const double *P, double vj, double mui, double muj, double eta2,
+                                 int dim) {
+    double xg = 0;
+    for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
+    return ry_morris_coefficient(ry_morris_mu_harmonic2(mui, muj),
+                                 ry_morris_weight(vj, xg, 1.0 / (P[RY_PW_R2] + eta2)));
+}
+
 /* The velocity the viscous term sees at each particle (s->vg): its own, or at a wall
  * with wall_velocity: ghost the ghost velocity of Adami et al. (2012, eq. 22-23;
  * boundary/walls_adami2012.h), which puts the no-slip condition on the wall surface. */
@@ -72,11 +83,7 @@ static inline void force_row(const ry_sim *sim, const iisph *s, size_t i, const 
             if (mui + muj <= 0) continue;
             const double vj = wall ? 1.0 / delta[i] : 1.0 / delta[j];
             if (s->morris) {
-                double xg = 0;
-                for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
-                const double f =
-                    ry_morris_coefficient(ry_morris_mu_harmonic2(mui, muj),
-                                          ry_morris_weight(vj, xg, 1.0 / (P[RY_PW_R2] + eta2)));
+                const double f = morris_pair(P, vj, mui, muj, eta2, dim);
                 for (int d = 0; d < dim; ++d) a[d] += f * (vg[d][i] - vg[d][j]);
                 continue;
             }
@@ -204,12 +211,8 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
             double c = 0;
             if (!(wall && s->slip)) {
                 const double muj = wall ? mui : dyn_viscosity(sim, s, j);
-                double xg = 0;
-                for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
                 const double vj = wall ? vi : 1.0 / delta[j];
-                c = -dt * vi *
-                    ry_morris_coefficient(ry_morris_mu_harmonic2(mui, muj),
-                                          ry_morris_weight(vj, xg, 1.0 / (P[RY_PW_R2] + eta2)));
+                c = -dt * vi * morris_pair(P, vj, mui, muj, eta2, dim);
             }
             ry_csr_row_pair(&row, c, s->unk[j]); /* (a wall: a known velocity) */
             if (wall)

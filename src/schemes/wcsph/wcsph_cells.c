@@ -32,7 +32,7 @@ typedef struct fast_ctx {
     double g[3], diff, rho_ref, inv_c02;
     double hdt, hdt_rho; /* the predictions of wc_lean (0 otherwise) */
     const uint8_t *halo; /* a distributed run's halo particles (NULL: none) */
-    float rad2, inv_h, dnorm_h, c0, h0, kappa;
+    float rad2, inv_h, dnorm_h, c0, kappa;
     wc_pair_k_f K; /* the pair term's constants */
     int cont, fourtakas, energy;
 } fast_ctx;
@@ -57,7 +57,7 @@ fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *
         /* At h_ij = (h_i + h_j) / 2: dW/dr / r = dnorm / h0 (h0 / h_ij)^(d+2) f'(q) / q with
          * q = r / h_ij, zero from q = kappa on (the search covers the largest h). */
         const float hij = 0.5f * (hi + c->fk[FK_H * fs + l]), inv_hij = 1.0f / hij;
-        const float s = c->h0 * inv_hij, s2 = s * s, sd = dim > 2 ? s2 * s2 * s : s2 * s2;
+        const float s = K->h * inv_hij, s2 = s * s, sd = dim > 2 ? s2 * s2 * s : s2 * s2;
         const float q = sqrtf(r2) * inv_hij;
         const float fq = c->dnorm_h * sd * ry_kdshape_over_qf(kt, q);
         fw = ((r2 < c->rad2) & (q < c->kappa)) ? fq : 0.0f;
@@ -115,7 +115,7 @@ fast_particle(const fast_ctx *restrict c, size_t i, const int dim, const ry_kern
     /* The sound speed is c0 for the Tait and linear equations of state (constant), the
      * particles' own with the ideal gas (the general form). */
     I.cs = general ? fk[FK_CS * fs + i] : c->c0;
-    const float hi = general ? fk[FK_H * fs + i] : c->h0;
+    const float hi = general ? fk[FK_H * fs + i] : K.h;
     const float fh = c->fourtakas ? (float)(c->rho0m[c->material[i]] * c->inv_c02) : 0.0f;
     I.fgx = fh * (float)c->g[0];
     I.fgy = fh * (float)c->g[1];
@@ -411,7 +411,6 @@ void wc_fast_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     c.hdt = w->hdt;
     c.halo = sim->halo;
     c.hdt_rho = c.cont ? w->hdt : 0.0;
-    c.h0 = (float)k->h;
     c.kappa = (float)k->kappa;
     c.de = ps->f[RY_F_DE];
     c.energy = w->energy;
