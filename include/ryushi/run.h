@@ -57,8 +57,10 @@ ry_status ry_sim_checkpoint_now(ry_sim *sim, char *path, size_t path_size, ry_er
  * checkpoints/ folder); damaged newer ones are skipped and named in *skipped (may be NULL). */
 ry_status ry_sim_restart(ry_sim *sim, const char *dir, char *used, size_t used_size, char *skipped,
                          size_t skipped_size, ry_error *err);
-/* The last good state: copied every guard.snapshot_every steps; on instability written as
- * CASE_last_good.vtp and a checkpoint. */
+/* Writes the state as the last good one: CASE_last_good.vtp and a checkpoint (its file in path). */
+ry_status ry_sim_last_good_write(ry_sim *sim, char *path, size_t path_size, ry_error *err);
+/* guard.last_good: memory. The state copied every guard.snapshot_every steps; on instability
+ * restored and written by ry_sim_last_good_write. */
 ry_status ry_sim_snapshot_take(ry_sim *sim, ry_error *err);
 ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_error *err);
 void ry_sim_snapshot_free(ry_sim *sim);

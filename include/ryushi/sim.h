@@ -179,8 +179,16 @@ typedef struct ry_guard {
     double rho_min, rho_max;     /* fluid density / reference density outside [min, max] */
     double max_outside_fraction; /* of the fluid particles outside the domain box */
     double min_dt_ratio;         /* the stable step below this times the run's largest */
-    int snapshot_every;          /* steps between in-memory copies of the last good state */
+    int last_good;               /* RY_LAST_GOOD_*: how the state before a failure is kept */
+    int snapshot_every;          /* RY_LAST_GOOD_MEMORY: steps between in-memory copies */
 } ry_guard;
+
+/* How a run keeps its last good state (case key guard.last_good). */
+enum {
+    RY_LAST_GOOD_REPLAY, /* replayed from the newest checkpoint up to the last checked step */
+    RY_LAST_GOOD_MEMORY, /* an in-memory copy every guard.snapshot_every steps */
+    RY_LAST_GOOD_NONE
+};
 
 /* Checkpoint policy (case section `checkpoint`). */
 typedef struct ry_ckpt_policy {

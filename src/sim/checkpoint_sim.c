@@ -487,8 +487,12 @@ ry_status ry_sim_snapshot_write(ry_sim *sim, char *path, size_t path_size, ry_er
     ry_state_var vars[MAX_VARS];
     int nv = scheme_vars(sim, vars);
     for (int i = 0; i < nv && i < s->nv; ++i) (void)var_set(&vars[i], s->vars[i]);
+    return ry_sim_last_good_write(sim, path, path_size, err);
+}
+
+ry_status ry_sim_last_good_write(ry_sim *sim, char *path, size_t path_size, ry_error *err) {
     char vtp[4200];
     snprintf(vtp, sizeof vtp, "%s/%s_last_good.vtp", sim->out_dir, sim->case_name);
-    RY_TRY(ry_vtk_write_particles(vtp, ps, sim->t, err));
+    RY_TRY(ry_vtk_write_particles(vtp, &sim->ps, sim->t, err));
     return ry_sim_checkpoint_now(sim, path, path_size, err);
 }

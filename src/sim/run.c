@@ -26,19 +26,48 @@ static double largest_speed(ry_sim *sim) {
     return sim->par ? sim->par->max(sim, v) : v;
 }
 
-/* On instability: the last good state goes to disk (VTK and checkpoint), named in the message. */
-static void keep_last_good(ry_sim *sim, ry_error *err) {
-    if (!sim->snapshot && sim->par) {
+/* What a failing run knows of its last good state: the last step that passed its check, and
+ * the newest checkpoint this run wrote (guard.last_good: replay). */
+typedef struct last_good {
+    long step;
+    long ck_step;     /* -1: none */
+    const char *ckpt; /* its file */
+} last_good;
+
+static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats,
+                          long replay_until, ry_error *err);
+
+/* On instability: the last good state goes to disk (VTK and checkpoint), named in the message.
+ * By replay, the newest checkpoint of this run is read back and the run taken again from it to
+ * the last checked step (the steps are the same bitwise: the state is the one the run had);
+ * or from the in-memory copy (guard.last_good: memory). */
+static void keep_last_good(ry_sim *sim, const last_good *lg, const ry_run_hooks *hooks,
+                           ry_error *err) {
+    const int replay = sim->guard.last_good == RY_LAST_GOOD_REPLAY && lg->ck_step >= 0;
+    if (!sim->snapshot && !replay) {
         size_t l = strlen(err->msg);
         snprintf(err->msg + l, sizeof err->msg - l,
-                 "; a distributed run keeps no last-good snapshot: its newest output and "
-                 "checkpoint in %s remain",
+                 "; no last good state was kept%s: the newest output and checkpoint in %s remain",
+                 sim->par ? " (a distributed run)" : "",
                  sim->out_dir ? sim->out_dir : "the output folder");
+        return;
     }
-    if (!sim->snapshot) return;
     char path[4300];
     ry_error e = {0};
-    if (ry_sim_snapshot_write(sim, path, sizeof path, &e) == RY_OK) {
+    ry_status st;
+    if (replay) {
+        ry_run_hooks stop_only = {0};
+        if (hooks) stop_only.stop = hooks->stop;
+        st = ry_sim_checkpoint_read(sim, lg->ckpt, &e);
+        if (st == RY_OK && sim->step < lg->step) st = run_loop(sim, &stop_only, NULL, lg->step, &e);
+        if (st == RY_OK && sim->step != lg->step)
+            st = ry_error_set(&e, RY_ERR_INTERNAL, "the replay from %s ended at step %ld", lg->ckpt,
+                              sim->step);
+        if (st == RY_OK) st = ry_sim_last_good_write(sim, path, sizeof path, &e);
+    } else {
+        st = ry_sim_snapshot_write(sim, path, sizeof path, &e);
+    }
+    if (st == RY_OK) {
         size_t l = strlen(err->msg);
         snprintf(err->msg + l, sizeof err->msg - l,
                  "; the last good state (step %ld, t = %.6g s) is in %s/%s_last_good.vtp and %s",
@@ -55,6 +84,14 @@ ry_status ry_sim_output(ry_sim *sim, ry_error *err) {
 }
 
 ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err) {
+    return run_loop(sim, hooks, stats, -1, err);
+}
+
+/* The time loop; replay_until >= 0: a replay (keep_last_good) to that step, which writes the
+ * outputs again as they were and no checkpoints. */
+static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats,
+                          long replay_until, ry_error *err) {
+    const int replay = replay_until >= 0;
     double t0 = ry_wall_time(), last_report = t0;
     long step0 = sim->step;
     const double t_begin = sim->t; /* a restart or a second call starts part-way */
@@ -68,12 +105,22 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
     }
     /* The state handed in must be sound before it becomes the first "last good" one. */
     RY_TRY(ry_sim_check(sim, err));
-    const int snap_every = sim->guard.snapshot_every;
+    const int snap_every = replay ? 0 : sim->guard.snapshot_every;
     if (snap_every > 0) RY_TRY(ry_sim_snapshot_take(sim, err));
     const double eps = 1e-12 * sim->t_end;
     double dt_peak = 0; /* the largest stable step of this run (guard.min_dt_ratio) */
     char ckpt[4300] = "";
-    while (sim->t < sim->t_end - eps && sim->step < sim->max_steps && !sim->finished) {
+    last_good lg = {sim->step, -1, ckpt};
+    if (!replay && !sim->par && sim->guard.last_good == RY_LAST_GOOD_REPLAY) {
+        /* the state a replay starts from (not counted in the run's speed) */
+        double w = ry_wall_time();
+        sim->ckpt.scheduled = 0;
+        RY_TRY(ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, err));
+        lg.ck_step = sim->step;
+        t0 += ry_wall_time() - w;
+    }
+    while (sim->t < sim->t_end - eps && sim->step < sim->max_steps && !sim->finished &&
+           !(replay && sim->step >= replay_until)) {
         int stop = hooks && hooks->stop && *hooks->stop;
         if (sim->par) stop = !sim->par->all(sim, !stop); /* all ranks stop at the same step */
         if (stop) {
@@ -83,7 +130,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         double dt;
         st = sim->scheme->stable_dt(sim, sim->scheme_state, &dt, err);
         if (st != RY_OK) {
-            if (st == RY_ERR_UNSTABLE) keep_last_good(sim, err);
+            if (st == RY_ERR_UNSTABLE && !replay) keep_last_good(sim, &lg, hooks, err);
             goto done;
         }
         if (sim->par) dt = -sim->par->max(sim, -dt);
@@ -92,7 +139,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             st = ry_error_set(err, RY_ERR_UNSTABLE,
                               "unstable at step %ld, t = %.6g s: time step %g is not positive",
                               sim->step, sim->t, dt);
-            keep_last_good(sim, err);
+            if (!replay) keep_last_good(sim, &lg, hooks, err);
             goto done;
         }
         /* A step that collapses (the speeds or forces of a flow that has blown up set it)
@@ -106,7 +153,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
                               "largest speed %.4g m/s",
                               sim->step, sim->t, dt, sim->guard.min_dt_ratio, dt_peak,
                               largest_speed(sim));
-            keep_last_good(sim, err);
+            if (!replay) keep_last_good(sim, &lg, hooks, err);
             goto done;
         }
         /* Land on output times and the end time exactly (no sliver steps after them). */
@@ -119,7 +166,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
         sim->checked = 0;
         st = sim->scheme->step(sim, sim->scheme_state, dt, err);
         if (st != RY_OK) {
-            if (st == RY_ERR_UNSTABLE) keep_last_good(sim, err);
+            if (st == RY_ERR_UNSTABLE && !replay) keep_last_good(sim, &lg, hooks, err);
             goto done;
         }
         sim->t += dt;
@@ -134,9 +181,11 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
                  : ry_sim_check(sim, err);
         sim->checked = 0;
         if (st != RY_OK) {
-            keep_last_good(sim, err);
+            lg.step = sim->step - 1;
+            if (!replay) keep_last_good(sim, &lg, hooks, err);
             goto done;
         }
+        lg.step = sim->step;
         if (snap_every > 0 && sim->step % snap_every == 0) {
             st = ry_sim_snapshot_take(sim, err);
             if (st != RY_OK) goto done;
@@ -146,6 +195,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             if (st != RY_OK) goto done;
             while (sim->next_output <= sim->t + eps) sim->next_output += sim->output_interval;
         }
+        if (replay) continue;
         int due = checkpoint_due(sim, eps);
         /* The wall clock differs between ranks: they agree on the most pressing verdict. */
         if (sim->par) due = (int)sim->par->max(sim, due == 1 ? 3.0 : due);
@@ -155,6 +205,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
             while (sim->ckpt.next_t <= sim->t + eps) sim->ckpt.next_t += sim->ckpt.interval;
             st = ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, err);
             if (st != RY_OK) goto done;
+            lg.ck_step = sim->step;
         }
         double now = ry_wall_time();
         if (hooks && hooks->progress && now - last_report >= hooks->progress_interval_s) {
@@ -170,6 +221,7 @@ ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats
     /* A checkpoint of the final state (before its output, so that a restart from it writes
      * that output again exactly as an uninterrupted run would), then the final state's output
      * unless it was just written. */
+    if (replay) goto done;
     if (st == RY_ERR_INTERRUPTED || sim->ckpt.at_end) {
         ry_error e = {0};
         sim->ckpt.scheduled = st != RY_ERR_INTERRUPTED; /* the end of the run is scheduled */

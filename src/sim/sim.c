@@ -260,21 +260,23 @@ static ry_status read_guard(ry_sim *sim, ry_case *c, ry_error *err) {
     RY_TRY(ry_case_double(c, "guard.max_outside_fraction", &out, 0.0, 1.0, &g->max_outside_fraction,
                           err));
     RY_TRY(ry_case_double(c, "guard.min_dt_ratio", &dtr, 0.0, 0.999999, &g->min_dt_ratio, err));
+    static const char *const modes[] = {"replay", "memory", "none", NULL};
+    RY_TRY(ry_case_choice(c, "guard.last_good", "replay", modes, &g->last_good, err));
     RY_TRY(ry_case_int(c, "guard.snapshot_every", &every, 0, 1000000000L, &every, err));
-    g->snapshot_every = (int)every;
+    g->snapshot_every = g->last_good == RY_LAST_GOOD_MEMORY ? (int)every : 0;
     return RY_OK;
 }
 
 static ry_status read_checkpoint(ry_sim *sim, ry_case *c, ry_error *err) {
     ry_ckpt_policy *k = &sim->ckpt;
-    double zero = 0, hour = 3600;
+    double zero = 0, ten_min = 600; /* (bounds the replay of a last good state) */
     long none = 0, keep = 2;
     int yes = 1;
     RY_TRY(ry_case_double(c, "checkpoint.interval", &zero, 0.0, 1e300, &k->interval, err));
     RY_TRY(
         ry_case_int(c, "checkpoint.every_steps", &none, 0, 1000000000000L, &k->every_steps, err));
-    RY_TRY(
-        ry_case_double(c, "checkpoint.wall_interval", &hour, 0.0, 1e300, &k->wall_interval, err));
+    RY_TRY(ry_case_double(c, "checkpoint.wall_interval", &ten_min, 0.0, 1e300, &k->wall_interval,
+                          err));
     RY_TRY(ry_case_int(c, "checkpoint.keep", &keep, 1, 1000, &keep, err));
     k->keep = (int)keep;
     RY_TRY(ry_case_bool(c, "checkpoint.at_end", &yes, &k->at_end, err));

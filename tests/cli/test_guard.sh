@@ -20,8 +20,21 @@ printf '%s' "$out" | grep -q "unstable at step [0-9]*, t = .*first: particle id 
     ok || bad "no diagnosis: $out"
 printf '%s' "$out" | grep -q "last good state (step [0-9]*" && ok || bad "no last good state: $out"
 [ -f "$T/g/dam_break_seed_last_good.vtp" ] && ok || bad "last good VTK missing"
-ck=$(ls "$T/g/checkpoints"/*.ryc 2>/dev/null | head -1)
+ck=$(ls "$T/g/checkpoints"/*.ryc 2>/dev/null | tail -1)
 [ -n "$ck" ] && "$RY" checkpoint "$ck" > /dev/null && ok || bad "last good checkpoint missing or unreadable"
+# The last good state is replayed from the run's first checkpoint to the last step that passed
+# the check: it is bitwise the state of a run stopped at that step.
+good=$(printf '%s' "$out" | sed -n 's/.*last good state (step \([0-9]*\),.*/\1/p')
+# shellcheck disable=SC2086
+"$RY" run "$DAM" $SET --set "gravity=[0,-2000]" --set time.max_steps="$good" -o "$T/g2" > /dev/null 2>&1
+cmp -s "$T/g/dam_break_seed_last_good.vtp" "$T/g2/dam_break_seed_00001.vtp" && ok ||
+    bad "the replayed last good state (step $good) differs from a run stopped there"
+# The in-memory copy (guard.last_good: memory) is at most guard.snapshot_every steps older.
+# shellcheck disable=SC2086
+out=$("$RY" run "$DAM" $SET --set "gravity=[0,-2000]" --set guard.last_good=memory -o "$T/gm" 2>&1)
+mem=$(printf '%s' "$out" | sed -n 's/.*last good state (step \([0-9]*\),.*/\1/p')
+[ -n "$mem" ] && [ "$mem" -le "$good" ] && [ "$mem" -gt $((good - 10)) ] &&
+    [ -f "$T/gm/dam_break_seed_last_good.vtp" ] && ok || bad "memory copy: step '$mem': $out"
 # A guard set below the dam break's real speeds (about 3 m/s) trips it; the run continues from
 # the last good state with the guard back at its default and reaches the end.
 # shellcheck disable=SC2086
@@ -52,7 +65,8 @@ out=$("$RY" run "$DAM" $SET --set guard.min_dt_ratio=0.99 -o "$T/dt" 2>&1)
 # (Each VTK file of this run is 133 kB, a checkpoint 144 kB: the limit, 270 blocks of 512 B
 # (sh's unit), lies between.)
 # shellcheck disable=SC2086
-out=$(sh -c "ulimit -f 270; exec \"$RY\" run \"$DAM\" $SET --set checkpoint.every_steps=300 -o \"$T/full\"" 2>&1)
+# (guard.last_good=memory: the replay's first checkpoint would be the one to fail)
+out=$(sh -c "ulimit -f 270; exec \"$RY\" run \"$DAM\" $SET --set checkpoint.every_steps=300 --set guard.last_good=memory -o \"$T/full\"" 2>&1)
 rc=$?
 [ "$rc" -eq 3 ] || bad "write error exited $rc, expected 3: $out"
 printf '%s' "$out" | grep -q "writing checkpoint .*checkpoint_0000000300.ryc failed: File too large" &&
