@@ -86,7 +86,7 @@ typedef struct ry_particles {
     uint8_t *kind;       /* ry_kind */
     uint8_t *material;   /* index into the simulation's materials */
     int64_t next_id;     /* id given to the next particle added */
-    void *scratch;       /* reordering buffer */
+    void *scratch;       /* the reordering's bits (a bit per particle and thread) */
     size_t scratch_bytes;
 } ry_particles;
 

@@ -355,6 +355,12 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err);
  * the next search in a distributed run, with the cells alone, or without a skin. */
 ry_status ry_sim_list_edit(ry_sim *sim, size_t n_old, size_t nspawn, const uint8_t *remove,
                            ry_error *err);
+/* The cells of the last search when their 3 x 3 (x 3) blocks still hold every pair of particles
+ * now closer than dist (the particle set unchanged since, in a run on one process, and no
+ * particle moved so far since that such a pair could have left them), with *drift the largest
+ * distance a particle moved since it was binned; NULL otherwise. For measurements that would
+ * otherwise bin the particles again. */
+const ry_cell_list *ry_sim_cells_within(const ry_sim *sim, double dist, double *drift);
 /* The index of the body (bodies[k] of the case) a particle with this id came from, or -1 (a
  * particle made later, e.g. by an inlet). */
 int ry_sim_body_of(const ry_sim *sim, int64_t id);

@@ -4,6 +4,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 static const char *const kind_names[RY_KIND_COUNT] = {"fluid", "wall", "solid", "inlet", "outlet"};
 
@@ -186,35 +189,55 @@ void ry_particles_remove(ry_particles *ps, const uint8_t *remove) {
     ps->n = w;
 }
 
+/* In place, cycle by cycle: a[k] becomes a[order[k]] for every k. seen: a bit per particle,
+ * cleared here. The particles move little between two searches, so the cycles are short and
+ * the walk stays within a few cache lines. No copy of the array is needed. */
+#define RY_PERMUTE_IN_PLACE_(name, type)                                                           \
+    static void name(type *a, const uint32_t *order, size_t n, uint64_t *seen) {                   \
+        memset(seen, 0, (n + 63) / 64 * sizeof *seen);                                             \
+        for (size_t s = 0; s < n; ++s) {                                                           \
+            if (seen[s / 64] >> (s % 64) & 1u) continue;                                           \
+            seen[s / 64] |= (uint64_t)1 << (s % 64);                                               \
+            if (order[s] == s) continue;                                                           \
+            const type first = a[s];                                                               \
+            size_t j = s, k;                                                                       \
+            while ((k = order[j]) != s) {                                                          \
+                a[j] = a[k];                                                                       \
+                seen[k / 64] |= (uint64_t)1 << (k % 64);                                           \
+                j = k;                                                                             \
+            }                                                                                      \
+            a[j] = first;                                                                          \
+        }                                                                                          \
+    }
+RY_PERMUTE_IN_PLACE_(permute_f64, double)
+RY_PERMUTE_IN_PLACE_(permute_i64, int64_t)
+RY_PERMUTE_IN_PLACE_(permute_u8, uint8_t)
+#undef RY_PERMUTE_IN_PLACE_
+
 ry_status ry_particles_permute(ry_particles *ps, const uint32_t *order, ry_error *err) {
-    /* The scratch buffer is swapped with field arrays, so it must hold a full capacity. */
-    size_t need = ps->cap * sizeof(double);
+    const size_t n = ps->n, words = (n + 63) / 64;
+    const int nt = omp_get_max_threads();
+    /* a bit per particle per thread: the arrays are permuted one per thread at a time */
+    const size_t need = (size_t)nt * words * sizeof(uint64_t);
     if (ps->scratch_bytes < need) {
         void *s = realloc(ps->scratch, need);
         if (!s && need) return ry_error_set(err, RY_ERR_NOMEM, "out of memory (reordering)");
         ps->scratch = s;
         ps->scratch_bytes = need;
     }
-    size_t n = ps->n;
-    double *tmp = ps->scratch;
-    for (int k = 0; k < ps->nfields; ++k) {
-        double *a = ps->f[k];
-        if (!a) continue;
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; ++i) tmp[i] = a[order[i]];
-        ps->f[k] = tmp;
-        tmp = a;
+    uint64_t *seen = ps->scratch;
+    const int narrays = ps->nfields + 3;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int k = 0; k < narrays; ++k) {
+        uint64_t *mine = seen + (size_t)omp_get_thread_num() * words;
+        if (k < ps->nfields) {
+            if (ps->f[k]) permute_f64(ps->f[k], order, n, mine);
+        } else if (k == ps->nfields) {
+            permute_i64(ps->id, order, n, mine);
+        } else {
+            permute_u8(k == ps->nfields + 1 ? ps->kind : ps->material, order, n, mine);
+        }
     }
-    /* The last buffer swapped out becomes the new scratch. */
-    ps->scratch = tmp;
-    int64_t *ti = (int64_t *)tmp;
-    for (size_t i = 0; i < n; ++i) ti[i] = ps->id[order[i]];
-    memcpy(ps->id, ti, n * sizeof *ti);
-    uint8_t *tb = (uint8_t *)tmp;
-    for (size_t i = 0; i < n; ++i) tb[i] = ps->kind[order[i]];
-    memcpy(ps->kind, tb, n);
-    for (size_t i = 0; i < n; ++i) tb[i] = ps->material[order[i]];
-    memcpy(ps->material, tb, n);
     return RY_OK;
 }
 

@@ -28,6 +28,18 @@ static double max_drift2(const ry_sim *sim) {
     return m;
 }
 
+const ry_cell_list *ry_sim_cells_within(const ry_sim *sim, double dist, double *drift) {
+    const ry_cell_list *cl = &sim->cells;
+    if (sim->par || sim->nopen > 0 || sim->nl_restore || !cl->start || cl->n != sim->ps.n ||
+        sim->f_xref < 0)
+        return NULL;
+    double edge = INFINITY;
+    for (int d = 0; d < sim->dim; ++d) edge = fmin(edge, cl->cell[d]);
+    /* a pair now closer than dist was closer than dist + 2 drift at the search */
+    *drift = sqrt(max_drift2(sim));
+    return dist + 2 * *drift < edge ? cl : NULL;
+}
+
 ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const double skin = sim->nl_skin * radius;

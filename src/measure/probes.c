@@ -154,36 +154,70 @@ static ry_status current_cells(const ry_sim *sim, double radius, ry_cell_list *c
 /* Fluid particles inside a wall: inside the lattice cell (a square or cube of side dx centred
  * on the particle) of some wall particle, i.e. within dx/2 of it in every direction. The wall
  * surface lies half a spacing beyond the outer wall layer, so this counts exactly the fluid
- * particles that crossed it. Searches cells of its own (current_cells). */
+ * particles that crossed it. */
 static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
     const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
     *v = 0;
-    ry_cell_list cl;
-    const double *x[3];
-    int per[3];
-    /* (cells of two spacings: an eighth of the cells of one, whose start offsets would take
-     * more memory than the particles on a fine 3D lattice; the count is the same) */
-    RY_TRY(current_cells(sim, 2.0 * sim->dx, &cl, x, per, err));
     const double lim = 0.5 * sim->dx * (1 - 1e-9);
+    /* The run's own cells where they serve (a pair within lim in every direction lies within
+     * lim sqrt(dim)); else cells of two spacings: an eighth of the cells of one, whose start
+     * offsets would take more memory than the particles on a fine 3D lattice. */
+    double drift = 0;
+    const ry_cell_list *run = ry_sim_cells_within(sim, lim * sqrt((double)dim), &drift);
+    ry_cell_list own;
+    const double *x[3];
+    int per[3], periodic = 0;
+    for (int d = 0; d < 3; ++d) {
+        per[d] = d < dim && sim->box.periodic[d];
+        periodic |= per[d];
+    }
+    ry_particles_coords(ps, x);
+    if (!run) RY_TRY(current_cells(sim, 2.0 * sim->dx, &own, x, per, err));
+    const ry_cell_list *cl = run ? run : &own;
+    /* The cells binned from positions within lim + drift of a particle in every direction
+     * (the binning is monotone in the position); the 3 x 3 (x 3) block in periodic domains. */
+    const double reach = lim + drift;
     size_t count = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : count)
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_FLUID) continue;
         size_t cells[27];
-        const int nc = ry_cells_neighbours(&cl, per, cl.cell_of[i], cells);
+        int nc = 0;
+        if (periodic) {
+            nc = ry_cells_neighbours(cl, per, cl->cell_of[i], cells);
+        } else {
+            long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+            for (int d = 0; d < dim; ++d) {
+                const double inv = 1.0 / cl->cell[d];
+                const double a = floor((x[d][i] - reach - cl->lo[d]) * inv);
+                const double b = floor((x[d][i] + reach - cl->lo[d]) * inv);
+                const long top = cl->ncell[d] - 1;
+                lo[d] = a < 0.0 ? 0 : a > (double)top ? top : (long)a;
+                hi[d] = b < 0.0 ? 0 : b > (double)top ? top : (long)b;
+            }
+            for (long kz = lo[2]; kz <= hi[2]; ++kz)
+                for (long ky = lo[1]; ky <= hi[1]; ++ky)
+                    for (long kx = lo[0]; kx <= hi[0]; ++kx)
+                        if (nc < 27)
+                            cells[nc++] = ((size_t)kz * (size_t)cl->ncell[1] + (size_t)ky) *
+                                              (size_t)cl->ncell[0] +
+                                          (size_t)kx;
+        }
         int inside = 0;
         for (int c = 0; c < nc && !inside; ++c)
-            for (size_t q = cl.start[cells[c]]; q < cl.start[cells[c] + 1] && !inside; ++q) {
-                const uint32_t j = cl.order[q];
+            for (size_t q = cl->start[cells[c]]; q < cl->start[cells[c] + 1] && !inside; ++q) {
+                const uint32_t j = cl->order[q];
                 if (ps->kind[j] != RY_KIND_WALL) continue;
                 double dx[3] = {0, 0, 0}, dmax = 0;
-                for (int d = 0; d < sim->dim; ++d) dx[d] = x[d][i] - x[d][j];
+                for (int d = 0; d < dim; ++d) dx[d] = x[d][i] - x[d][j];
                 ry_box_min_image(&sim->box, dx);
-                for (int d = 0; d < sim->dim; ++d) dmax = fmax(dmax, fabs(dx[d]));
+                for (int d = 0; d < dim; ++d) dmax = fmax(dmax, fabs(dx[d]));
                 inside = dmax < lim;
             }
         count += (size_t)inside;
     }
-    ry_cells_free(&cl);
+    if (!run) ry_cells_free(&own);
     *v = (double)count;
     return RY_OK;
 }

@@ -84,10 +84,54 @@ static void test_extra_field_follows(void **state) {
         assert_int_equal(ps.kind[i], id % 2);
         if (id < 100) assert_true(ps.f[fid][i] == 2.0 * (double)id);
     }
-    /* Permute twice more and grow: the swapped buffers keep full capacity. */
+    /* Permute once more and grow. */
     assert_int_equal(ry_particles_permute(&ps, order, &err), RY_OK);
     fill(&ps, 3);
     assert_int_equal(ps.id[ps.n - 1], 5102);
+    free(order);
+    ry_particles_free(&ps);
+}
+
+/* The permutation is applied in place, cycle by cycle: one cycle through every particle (a
+ * rotation) and a shuffle give what a gather gives, in every field and in id, kind, material. */
+static void test_permute_cycles(void **state) {
+    (void)state;
+    ry_particles ps;
+    ry_error err;
+    assert_int_equal(ry_particles_init(&ps, 3, &err), RY_OK);
+    fill(&ps, 1000);
+    const size_t n = ps.n;
+    uint32_t *order = malloc(n * sizeof *order);
+    int64_t *before = malloc(n * sizeof *before);
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 0) {
+            for (size_t i = 0; i < n; ++i) order[i] = (uint32_t)((i + 1) % n);
+        } else {
+            uint64_t r = 12345;
+            for (size_t i = 0; i < n; ++i) order[i] = (uint32_t)i;
+            for (size_t i = n - 1; i > 0; --i) { /* Fisher-Yates */
+                r = r * 6364136223846793005ull + 1442695040888963407ull;
+                const size_t k = (size_t)(r >> 33) % (i + 1);
+                const uint32_t t = order[i];
+                order[i] = order[k];
+                order[k] = t;
+            }
+        }
+        for (size_t i = 0; i < n; ++i) {
+            ps.material[i] = (uint8_t)(ps.id[i] % 7);
+            before[i] = ps.id[i];
+        }
+        assert_int_equal(ry_particles_permute(&ps, order, &err), RY_OK);
+        for (size_t i = 0; i < n; ++i) {
+            const int64_t id = ps.id[i];
+            assert_int_equal(id, before[order[i]]);
+            assert_true(ps.f[RY_F_X][i] == (double)id);
+            assert_true(ps.f[RY_F_RHO][i] == 1000.0 + (double)id);
+            assert_int_equal(ps.kind[i], id % 2);
+            assert_int_equal(ps.material[i], id % 7);
+        }
+    }
+    free(before);
     free(order);
     ry_particles_free(&ps);
 }
@@ -249,10 +293,15 @@ static void test_shape_moment_isotropic(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_dimension_fields),    cmocka_unit_test(test_growth_keeps_data),
-        cmocka_unit_test(test_extra_field_follows), cmocka_unit_test(test_field_on_request),
-        cmocka_unit_test(test_remove_keeps_order),  cmocka_unit_test(test_kind_names),
-        cmocka_unit_test(test_shape_moment),        cmocka_unit_test(test_shape_moment_isotropic),
+        cmocka_unit_test(test_dimension_fields),
+        cmocka_unit_test(test_growth_keeps_data),
+        cmocka_unit_test(test_extra_field_follows),
+        cmocka_unit_test(test_permute_cycles),
+        cmocka_unit_test(test_field_on_request),
+        cmocka_unit_test(test_remove_keeps_order),
+        cmocka_unit_test(test_kind_names),
+        cmocka_unit_test(test_shape_moment),
+        cmocka_unit_test(test_shape_moment_isotropic),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

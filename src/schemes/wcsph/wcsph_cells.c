@@ -78,8 +78,10 @@ fluid_lane(const fast_ctx *restrict c, const wc_pair_k_f *K, const wc_pair_i_f *
     J.mu = fk[FK_MU * fs + l];
     J.cs = general ? fk[FK_CS * fs + l] : c->c0;
     J.mass = fk[FK_MASS * fs + l];
+    /* (FK_MU: the viscous coupling of a particle that is not fluid; exact, and without a
+     * comparison, which would keep this loop from vectorising with GCC) */
     J.fluid = fk[FK_FLUID * fs + l];
-    J.visc = fk[FK_VISC * fs + l];
+    J.visc = J.fluid + (1.0f - J.fluid) * J.mu;
     return wc_pair_f(K, I, &J, dx, dy, dz, r2, fw, dim, general, repulse);
 }
 
@@ -485,7 +487,7 @@ void wc_fpack_fluid(ry_sim *sim, const wcsph *w) {
         fk[FK_MU * fs + i] = laminar ? (float)(r * mat[matl[i]].viscosity) : 0.0f;
         fk[FK_MASS * fs + i] = (float)m[i];
         fk[FK_FLUID * fs + i] = kind[i] == RY_KIND_FLUID || kind[i] == RY_KIND_OUTLET;
-        fk[FK_VISC * fs + i] = 1.0f; /* not a wall */
+        if (!fk[FK_FLUID * fs + i]) fk[FK_MU * fs + i] = 1.0f; /* viscous (not a wall) */
         fk[FK_P * fs + i] = (float)p[i];
     }
 }
@@ -540,8 +542,8 @@ static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w) {
         }
         float *restrict fdr = fk + FK_DRHO * fs, *restrict fpr = fk + FK_PRHO2 * fs;
         float *restrict fvol = fk + FK_VOL * fs, *restrict fmu = fk + FK_MU * fs;
-        float *restrict fm = fk + FK_MASS * fs, *restrict ffl = fk + FK_FLUID * fs;
-        float *restrict fvi = fk + FK_VISC * fs, *restrict fp = fk + FK_P * fs;
+        float *restrict fm = fk + FK_MASS * fs, *restrict fp = fk + FK_P * fs;
+        float *restrict ffl = fk + FK_FLUID * fs;
 #pragma omp for schedule(static) nowait
         for (size_t i = 0; i < n; ++i) {
             /* Walls stay inert until the wall pass (it reads every candidate, masked). */
@@ -551,10 +553,9 @@ static void fpack_fluid_one_rho0(ry_sim *sim, const wcsph *w) {
             fdr[i] = on * (float)(r - rho0);
             fpr[i] = on * (float)(p[i] * inv_rho * inv_rho);
             fvol[i] = on * (float)(m[i] * inv_rho);
-            fmu[i] = on * (float)(r * nu);
+            fmu[i] = kind[i] == RY_KIND_FLUID ? (float)(r * nu) : on; /* (FK_MU) */
             fm[i] = on * (float)m[i];
             ffl[i] = kind[i] == RY_KIND_FLUID ? 1.0f : 0.0f;
-            fvi[i] = on;
             fp[i] = on * (float)p[i];
         }
     }

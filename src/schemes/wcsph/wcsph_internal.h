@@ -101,11 +101,11 @@ enum {
     FK_DRHO, /* rho - rho_ref */
     FK_PRHO2,
     FK_VOL,
-    FK_MU,
+    FK_MU, /* a fluid particle's dynamic viscosity; any other's viscous coupling (1 or 0: the
+              pair term reads no other viscosity, a wall takes the fluid's) */
     FK_MASS,
-    FK_FLUID,
-    FK_VISC,
-    FK_P, /* pressure, for the wall pass */
+    FK_FLUID, /* 1 fluid, 0 otherwise */
+    FK_P,     /* pressure, for the wall pass */
     FK_COUNT,
     /* only with the energy equation, the ideal gas or variable h (wc_fk_count): */
     FK_CS = FK_COUNT, /* sound speed */
@@ -221,9 +221,21 @@ static inline int wall_like(const ry_particles *ps, size_t i) {
     return ps->kind[i] == RY_KIND_WALL || ps->kind[i] == RY_KIND_INLET;
 }
 
+/* mu_i = rho_i nu (laminar viscosity) and the viscous coupling of particle i: fluid, open-
+ * boundary buffers, and no-slip walls (through their ghost velocity). */
+static inline double pack_mu(const ry_sim *sim, const wcsph *w, size_t i) {
+    if (!w->laminar) return 0.0;
+    const double nu = w->rheo.on ? sim->ps.f[w->rheo.f_nu][i] /* from the shear rate */
+                                 : sim->mat[sim->ps.material[i]].viscosity;
+    return sim->ps.f[RY_F_RHO][i] * nu * w->mu_corr;
+}
+static inline double pack_visc(const ry_sim *sim, const wcsph *w, size_t i) {
+    return sim->ps.kind[i] != RY_KIND_WALL || w->wall == WALL_NO_SLIP ? 1.0 : 0.0;
+}
+
 /* The single-precision record of particle i for the cell-range loop (mu_i and the viscous
  * coupling as computed by wc_prepare_pairs; the ghost velocity is the wall pass's). */
-static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double mui, double visi) {
+static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double mui) {
     const ry_particles *ps = &sim->ps;
     const size_t fs = w->fpack_stride;
     float *restrict F = w->fpack + i;
@@ -235,23 +247,11 @@ static inline void fpack_one(const ry_sim *sim, const wcsph *w, size_t i, double
     F[FK_DRHO * fs] = (float)(rhoi - w->rho0m[0]);
     F[FK_PRHO2 * fs] = (float)(pi * inv_rho * inv_rho);
     F[FK_VOL * fs] = (float)(mi * inv_rho);
-    F[FK_MU * fs] = (float)mui;
+    const int fluid = ps->kind[i] == RY_KIND_FLUID || ps->kind[i] == RY_KIND_OUTLET;
+    F[FK_MU * fs] = (float)(fluid ? mui : pack_visc(sim, w, i));
     F[FK_MASS * fs] = (float)mi;
-    F[FK_FLUID * fs] = ps->kind[i] == RY_KIND_FLUID || ps->kind[i] == RY_KIND_OUTLET ? 1.0f : 0.0f;
-    F[FK_VISC * fs] = (float)visi;
+    F[FK_FLUID * fs] = fluid ? 1.0f : 0.0f;
     F[FK_P * fs] = (float)pi;
-}
-
-/* mu_i = rho_i nu (laminar viscosity) and the viscous coupling of particle i: fluid, open-
- * boundary buffers, and no-slip walls (through their ghost velocity). */
-static inline double pack_mu(const ry_sim *sim, const wcsph *w, size_t i) {
-    if (!w->laminar) return 0.0;
-    const double nu = w->rheo.on ? sim->ps.f[w->rheo.f_nu][i] /* from the shear rate */
-                                 : sim->mat[sim->ps.material[i]].viscosity;
-    return sim->ps.f[RY_F_RHO][i] * nu * w->mu_corr;
-}
-static inline double pack_visc(const ry_sim *sim, const wcsph *w, size_t i) {
-    return sim->ps.kind[i] != RY_KIND_WALL || w->wall == WALL_NO_SLIP ? 1.0 : 0.0;
 }
 
 /* The kernels the pair loops are compiled for, and a row of a driver table: [kernel][dim - 2]

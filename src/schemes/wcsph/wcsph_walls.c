@@ -81,14 +81,13 @@ static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
     const double *restrict rho = ps->f[RY_F_RHO], *restrict m = ps->f[RY_F_MASS];
     const double *restrict p = ps->f[RY_F_P];
     float *restrict fk = w->fpack;
-    const double rho0 = w->rho0m[0], nu = w->laminar ? sim->mat[0].viscosity : 0.0;
-    const float visc = w->wall == WALL_NO_SLIP ? 1.0f : 0.0f;
+    const double rho0 = w->rho0m[0];
 #pragma omp parallel
     {
         float *restrict fdr = fk + FK_DRHO * fs, *restrict fpr = fk + FK_PRHO2 * fs;
         float *restrict fvol = fk + FK_VOL * fs, *restrict fmu = fk + FK_MU * fs;
-        float *restrict fm = fk + FK_MASS * fs, *restrict fvi = fk + FK_VISC * fs;
-        float *restrict fp = fk + FK_P * fs;
+        float *restrict fm = fk + FK_MASS * fs, *restrict fp = fk + FK_P * fs;
+        const float visc = w->wall == WALL_NO_SLIP ? 1.0f : 0.0f;
 #pragma omp for schedule(static) nowait
         for (size_t i = 0; i < n; ++i) {
             const int wall = kind[i] == RY_KIND_WALL;
@@ -96,9 +95,8 @@ static void fpack_walls_one_rho0(ry_sim *sim, const wcsph *w) {
             fdr[i] = wall ? (float)(rho[i] - rho0) : fdr[i];
             fpr[i] = wall ? (float)(p[i] * inv_rho * inv_rho) : fpr[i];
             fvol[i] = wall ? (float)(m[i] * inv_rho) : fvol[i];
-            fmu[i] = wall ? (float)(rho[i] * nu) : fmu[i];
+            fmu[i] = wall ? visc : fmu[i]; /* (FK_MU) */
             fm[i] = wall ? (float)m[i] : fm[i];
-            fvi[i] = wall ? visc : fvi[i];
             fp[i] = wall ? (float)p[i] : fp[i];
         }
     }
@@ -188,8 +186,7 @@ wall_sums_ranges(const ry_sim *sim, const wcsph *w, size_t i, const int dim,
             return;                                                                                \
         }                                                                                          \
         _Pragma("omp parallel for schedule(static)") for (size_t i = 0; i < n; ++i) {              \
-            if (wall_like(&sim->ps, i))                                                            \
-                fpack_one(sim, w, i, pack_mu(sim, w, i), pack_visc(sim, w, i));                    \
+            if (wall_like(&sim->ps, i)) fpack_one(sim, w, i, pack_mu(sim, w, i));                  \
         }                                                                                          \
     }
 #define RY_WALL_RANGES_ALL_(KT) RY_WALL_RANGES_(2, KT) RY_WALL_RANGES_(3, KT)
