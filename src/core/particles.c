@@ -189,35 +189,39 @@ void ry_particles_remove(ry_particles *ps, const uint8_t *remove) {
     ps->n = w;
 }
 
-/* In place, cycle by cycle: a[k] becomes a[order[k]] for every k. seen: a bit per particle,
- * cleared here. The particles move little between two searches, so the cycles are short and
- * the walk stays within a few cache lines. No copy of the array is needed. */
-#define RY_PERMUTE_IN_PLACE_(name, type)                                                           \
-    static void name(type *a, const uint32_t *order, size_t n, uint64_t *seen) {                   \
-        memset(seen, 0, (n + 63) / 64 * sizeof *seen);                                             \
-        for (size_t s = 0; s < n; ++s) {                                                           \
-            if (seen[s / 64] >> (s % 64) & 1u) continue;                                           \
-            seen[s / 64] |= (uint64_t)1 << (s % 64);                                               \
-            if (order[s] == s) continue;                                                           \
-            const type first = a[s];                                                               \
-            size_t j = s, k;                                                                       \
-            while ((k = order[j]) != s) {                                                          \
-                a[j] = a[k];                                                                       \
-                seen[k / 64] |= (uint64_t)1 << (k % 64);                                           \
-                j = k;                                                                             \
-            }                                                                                      \
-            a[j] = first;                                                                          \
-        }                                                                                          \
+/* In place, cycle by cycle: element k of each array becomes element order[k], for a set of
+ * arrays of 8-byte (p8) and 1-byte (p1) elements walked together, so that each cycle is found
+ * once for all of them. seen: a bit per particle, cleared here; first8, first1: room for one
+ * element per array. The particles move little between two searches, so most stay and the
+ * cycles are short: the walk stays within a few cache lines, and no copy of an array is needed. */
+static void permute_arrays(unsigned char *const *p8, int n8, uint8_t *const *p1, int n1,
+                           const uint32_t *order, size_t n, uint64_t *seen, uint64_t *first8,
+                           uint8_t *first1) {
+    memset(seen, 0, (n + 63) / 64 * sizeof *seen);
+    for (size_t s = 0; s < n; ++s) {
+        /* (a particle that stays is a cycle of its own: no other cycle visits it) */
+        if (order[s] == s || (seen[s / 64] >> (s % 64) & 1u)) continue;
+        seen[s / 64] |= (uint64_t)1 << (s % 64);
+        for (int a = 0; a < n8; ++a) memcpy(&first8[a], p8[a] + 8 * s, 8);
+        for (int a = 0; a < n1; ++a) first1[a] = p1[a][s];
+        size_t j = s, k;
+        while ((k = order[j]) != s) {
+            for (int a = 0; a < n8; ++a) memcpy(p8[a] + 8 * j, p8[a] + 8 * k, 8);
+            for (int a = 0; a < n1; ++a) p1[a][j] = p1[a][k];
+            seen[k / 64] |= (uint64_t)1 << (k % 64);
+            j = k;
+        }
+        for (int a = 0; a < n8; ++a) memcpy(p8[a] + 8 * j, &first8[a], 8);
+        for (int a = 0; a < n1; ++a) p1[a][j] = first1[a];
     }
-RY_PERMUTE_IN_PLACE_(permute_f64, double)
-RY_PERMUTE_IN_PLACE_(permute_i64, int64_t)
-RY_PERMUTE_IN_PLACE_(permute_u8, uint8_t)
-#undef RY_PERMUTE_IN_PLACE_
+}
 
 ry_status ry_particles_permute(ry_particles *ps, const uint32_t *order, ry_error *err) {
     const size_t n = ps->n, words = (n + 63) / 64;
     const int nt = omp_get_max_threads();
-    /* a bit per particle per thread: the arrays are permuted one per thread at a time */
+    /* a bit per particle per thread, and a thread's share of the arrays */
+    int n8 = 1; /* the ids */
+    for (int k = 0; k < ps->nfields; ++k) n8 += ps->f[k] != NULL;
     const size_t need = (size_t)nt * words * sizeof(uint64_t);
     if (ps->scratch_bytes < need) {
         void *s = realloc(ps->scratch, need);
@@ -225,19 +229,29 @@ ry_status ry_particles_permute(ry_particles *ps, const uint32_t *order, ry_error
         ps->scratch = s;
         ps->scratch_bytes = need;
     }
-    uint64_t *seen = ps->scratch;
-    const int narrays = ps->nfields + 3;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int k = 0; k < narrays; ++k) {
-        uint64_t *mine = seen + (size_t)omp_get_thread_num() * words;
-        if (k < ps->nfields) {
-            if (ps->f[k]) permute_f64(ps->f[k], order, n, mine);
-        } else if (k == ps->nfields) {
-            permute_i64(ps->id, order, n, mine);
-        } else {
-            permute_u8(k == ps->nfields + 1 ? ps->kind : ps->material, order, n, mine);
-        }
+    unsigned char **p8 = malloc((size_t)n8 * sizeof *p8);
+    uint64_t *first8 = malloc((size_t)n8 * sizeof *first8);
+    if (!p8 || !first8) {
+        free(p8);
+        free(first8);
+        return ry_error_set(err, RY_ERR_NOMEM, "out of memory (reordering)");
     }
+    int m = 0;
+    for (int k = 0; k < ps->nfields; ++k)
+        if (ps->f[k]) p8[m++] = (unsigned char *)ps->f[k];
+    p8[m++] = (unsigned char *)ps->id;
+    uint8_t *const p1[2] = {ps->kind, ps->material};
+    uint64_t *seen = ps->scratch;
+#pragma omp parallel
+    {
+        /* each thread walks a share of the 8-byte arrays, the last one also the bytes */
+        const int t = omp_get_thread_num(), team = omp_get_num_threads();
+        const int a0 = n8 * t / team, a1 = n8 * (t + 1) / team;
+        permute_arrays(p8 + a0, a1 - a0, p1, t == team - 1 ? 2 : 0, order, n,
+                       seen + (size_t)t * words, first8 + a0, (uint8_t[2]){0, 0});
+    }
+    free(p8);
+    free(first8);
     return RY_OK;
 }
 
