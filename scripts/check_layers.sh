@@ -33,8 +33,9 @@ cat >"$WORK/layers" <<'EOF'
 5 schemes src/schemes/
 6 measure src/measure/
 7 sim src/sim/
-8 validate src/validate/ src/plot/
-9 cli src/cli/ src/parallel/
+8 api src/api/
+9 validate src/validate/ src/plot/
+10 cli src/cli/ src/parallel/
 EOF
 cat >"$WORK/headers" <<'EOF'
 util status.h atomic_file.h clock.h
@@ -44,6 +45,7 @@ physics rheology.h surface_tension.h collisions.h open_boundary.h
 schemes mps.h schemes.h
 measure probes.h validate.h solid.h
 sim run.h output.h
+api ryushi.h
 validate plot.h
 EOF
 
@@ -108,6 +110,6 @@ while read -r f; do
 done <"$WORK/files"
 
 if [ "$status" -eq 0 ]; then
-    echo "check_layers: $(wc -l <"$WORK/files") files in 10 layers, $(wc -l <"$WORK/pairs") dependencies: no upward use, no cycle, none over $MAX_LINES lines"
+    echo "check_layers: $(wc -l <"$WORK/files") files in 11 layers, $(wc -l <"$WORK/pairs") dependencies: no upward use, no cycle, none over $MAX_LINES lines"
 fi
 exit "$status"

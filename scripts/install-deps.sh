@@ -3,7 +3,7 @@
 # OpenMP runtime), draw its pictures and run distributed (OpenMPI, for ryushi-mpi).
 # Idempotent: packages already present are skipped; nothing is downloaded otherwise.
 set -eu
-PKGS="cmake make gcc pkg-config libfyaml-dev libcmocka-dev libcairo2-dev zlib1g-dev clang-format clang libclang-rt-14-dev libomp-dev libopenmpi-dev openmpi-bin"
+PKGS="cmake make gcc pkg-config python3 libfyaml-dev libcmocka-dev libcairo2-dev zlib1g-dev clang-format clang libclang-rt-14-dev libomp-dev libopenmpi-dev openmpi-bin"
 missing=""
 for p in $PKGS; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

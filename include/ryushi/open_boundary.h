@@ -5,7 +5,7 @@
 #include "ryushi/sim.h"
 
 /* Open boundaries: read from the case with their inlet zones filled (ry_sim_setup calls it),
- * and the conversions after each step (ry_sim_run calls it): inlet particles past their zone
+ * and the conversions after each step (ry_run calls it): inlet particles past their zone
  * become fluid and are replaced upstream, fluid entering an outlet zone becomes an outlet
  * particle, outlet particles past their zone are removed. Schemes move inlet and outlet
  * particles with their own velocity in their drift. */

@@ -14,7 +14,7 @@ double ry_cap_contact_angle(int dim, double h, double size);
 const ry_probe *const *ry_probes(void);
 
 /* Profiles: read from the case (ry_sim_setup calls it), sampled and written as
- * profile_NAME.csv at each output time (ry_sim_write_output calls it), freed. */
+ * profile_NAME.csv at each output time (ry_output_write calls it), freed. */
 ry_status ry_profiles_setup(ry_sim *sim, ry_case *c, ry_error *err);
 ry_status ry_profiles_output(ry_sim *sim, ry_error *err);
 void ry_profiles_free(ry_sim *sim);

@@ -2,7 +2,7 @@
  * the scheme's interface, and the queries every layer above the core may make of them.
  *
  * Data flows one way: case file -> ry_sim_setup (ryushi/run.h: validated parameters, bodies
- * filled with particles) -> ry_sim_run [neighbour search -> scheme step -> measurements ->
+ * filled with particles) -> ry_run [neighbour search -> scheme step -> measurements ->
  * output]. A scheme (WCSPH, IISPH, MPS, solid SPH) is a table of functions (ry_scheme_type)
  * registered by name in src/schemes/registry.c and chosen by the case's `scheme.name`. */
 #ifndef RYUSHI_SIM_H
@@ -183,6 +183,16 @@ typedef struct ry_guard {
     int snapshot_every;          /* RY_LAST_GOOD_MEMORY: steps between in-memory copies */
 } ry_guard;
 
+/* What the time loop keeps from one call to the next (src/sim/run.c). */
+typedef struct ry_loop_state {
+    int begun, ended; /* the run's first output, check and checkpoint; its final ones */
+    long first_step;  /* the step the run began at */
+    double dt_peak;   /* the largest stable step so far (guard.min_dt_ratio) */
+    long good_step;   /* the last step that passed the check */
+    long ck_step;     /* the step of the newest checkpoint the run wrote (-1: none) */
+    char ckpt[4300];  /* its file */
+} ry_loop_state;
+
 /* How a run keeps its last good state (case key guard.last_good). */
 enum {
     RY_LAST_GOOD_REPLAY, /* replayed from the newest checkpoint up to the last checked step */
@@ -291,6 +301,8 @@ struct ry_sim {
 
     /* reliability */
     ry_guard guard;
+    ry_loop_state loop;
+    void *api; /* what the library's interface keeps for its caller (src/api/api.c) */
     ry_ckpt_policy ckpt;
     int checked; /* the scheme's last loop of this step also made the guard check
                     (src/core/guard_check.h, ry_sim_checked), with the tallies below; the run
@@ -372,7 +384,7 @@ static inline int ry_sim_searched(const ry_sim *sim) {
 
 /* The running scheme's statistic `name` (ry_scheme_type.stat) into *value; returns 0, and leaves
  * *value alone, when the scheme keeps none of that name. */
-int ry_sim_stat(const ry_sim *sim, const char *name, double *value);
+int ry_scheme_stat(const ry_sim *sim, const char *name, double *value);
 /* The same as a value: NAN when the scheme keeps no statistic of that name. */
 double ry_sim_stat_value(const ry_sim *sim, const char *name);
 

@@ -54,7 +54,7 @@ static double bench_once(int dim, double dx, long steps, const char *out_dir, si
     if (st == RY_OK) st = ry_sim_setup(&sim, c, out_dir, &err);
     if (st == RY_OK) st = ry_sim_open_output(&sim, c, &err);
     sim.ckpt.at_end = 0; /* throughput only: no checkpoint of the final state */
-    if (st == RY_OK) st = ry_sim_run(&sim, NULL, &stats, &err);
+    if (st == RY_OK) st = ry_run(&sim, NULL, &stats, &err);
     if (st != RY_OK) fprintf(stderr, "ryushi: bench: %s\n", err.msg);
     *np = sim.ps.n;
     *bpp = ry_sim_bytes_per_particle(&sim);

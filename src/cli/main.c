@@ -12,6 +12,7 @@
 #include "ryushi/case.h"
 #include "ryushi/checkpoint.h"
 #include "ryushi/probes.h"
+#include "ryushi/ryushi.h"
 #include "ryushi/run.h"
 #include "ryushi/schemes.h"
 #include "ryushi/sim.h"
@@ -28,15 +29,21 @@ static void on_signal(int sig) {
 
 /* SIGINT and SIGTERM end a run cleanly (a checkpoint is written); a file-size limit reached is
  * a write error to report (like a full disk), not a kill. */
-static void catch_signals(void) {
+static void catch_signals_with(void (*handler)(int)) {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
+    sa.sa_handler = handler;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     signal(SIGXFSZ, SIG_IGN);
 }
+
+#ifdef RY_MPI_CLI
+static void catch_signals(void) {
+    catch_signals_with(on_signal);
+}
+#endif
 
 static void usage(FILE *fp) {
     fprintf(fp,
@@ -162,25 +169,6 @@ static void fmt_duration(char *buf, size_t size, double s) {
         snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
 }
 
-static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
-    const progress_ctx *p = ctx;
-    char e[32];
-    fmt_duration(e, sizeof e, eta);
-    if (p->tty) {
-        fprintf(stderr,
-                "\r  t = %.4g / %.4g s  step %ld  dt = %.3g s  %.3g particle-steps/s  "
-                "ETA %s   ",
-                sim->t, sim->t_end, sim->step, sim->dt, rate, e);
-        fflush(stderr);
-    } else {
-        fprintf(stdout,
-                "progress t=%.6g t_end=%.6g step=%ld dt=%.4g particle_steps_per_s=%.4g "
-                "eta_s=%.0f\n",
-                sim->t, sim->t_end, sim->step, sim->dt, rate, eta);
-        fflush(stdout);
-    }
-}
-
 /* Reads the case named on the command line, applies --set and sets the simulation up. */
 static ry_status setup_case(const run_args *a, ry_case **c, ry_sim *sim, ry_error *err) {
     memset(sim, 0, sizeof *sim);
@@ -195,6 +183,51 @@ static double peak_rss_mb(void) {
     return getrusage(RUSAGE_SELF, &u) == 0 ? (double)u.ru_maxrss / 1024.0 : 0.0;
 }
 
+/* The handle a signal asks to stop (ryushi run). */
+static ry_sim *volatile running;
+
+static void on_signal_run(int sig) {
+    on_signal(sig);
+    if (running) ry_sim_request_stop(running);
+}
+
+static void api_progress(void *ctx, double t, double t_end, long step, double dt, double rate,
+                         double eta) {
+    const progress_ctx *p = ctx;
+    char e[32];
+    fmt_duration(e, sizeof e, eta);
+    if (p->tty) {
+        fprintf(stderr,
+                "\r  t = %.4g / %.4g s  step %ld  dt = %.3g s  %.3g particle-steps/s  "
+                "ETA %s   ",
+                t, t_end, step, dt, rate, e);
+        fflush(stderr);
+    } else {
+        fprintf(stdout,
+                "progress t=%.6g t_end=%.6g step=%ld dt=%.4g particle_steps_per_s=%.4g "
+                "eta_s=%.0f\n",
+                t, t_end, step, dt, rate, eta);
+        fflush(stdout);
+    }
+}
+
+#ifdef RY_MPI_CLI
+static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
+    api_progress(ctx, sim->t, sim->t_end, sim->step, sim->dt, rate, eta);
+}
+#endif
+
+static int api_fail(int rc) {
+    fprintf(stderr, "ryushi: %s\n", ry_last_error());
+    return rc;
+}
+
+static double stat_of(const ry_sim *sim, const char *name) {
+    double v = 0;
+    return ry_sim_stat(sim, name, &v) == 0 ? v : 0.0;
+}
+
+/* ryushi run: through the library's interface (include/ryushi/ryushi.h). */
 static int cmd_run(int argc, char **argv) {
     run_args a;
     int rc = parse_args(argc, argv, 2, &a, 1);
@@ -202,50 +235,51 @@ static int cmd_run(int argc, char **argv) {
         free(a.sets);
         return rc;
     }
-    ry_error err = {0};
-    ry_case *c;
-    ry_sim sim;
     if (a.restart && !a.out_dir) a.out_dir = a.restart; /* continue in the same folder */
-    ry_status st = setup_case(&a, &c, &sim, &err);
-    if (st == RY_OK) st = ry_sim_open_output(&sim, c, &err);
+    /* (before the set-up: a signal during it stops the run at its first step) */
+    catch_signals_with(on_signal_run);
+    ry_sim *sim = NULL;
+    rc = ry_sim_load(&sim, a.case_path, a.nset, a.sets, a.out_dir);
+    if (rc == 0) rc = ry_sim_set_threads(sim, a.threads);
     char used[4300] = "", skipped[2048] = "";
-    if (st == RY_OK && a.restart)
-        st = ry_sim_restart(&sim, a.restart, used, sizeof used, skipped, sizeof skipped, &err);
+    if (rc == 0 && a.restart)
+        rc = ry_sim_restart(sim, a.restart, used, sizeof used, skipped, sizeof skipped);
     if (skipped[0])
         fprintf(stderr, "ryushi: warning: skipped damaged checkpoint(s): %s\n", skipped);
-    if (st != RY_OK) {
-        rc = fail(&err);
-        ry_sim_free(&sim);
-        ry_case_free(c);
+    if (rc) {
+        api_fail(rc);
+        ry_sim_destroy(sim);
         free(a.sets);
         return rc;
     }
     progress_ctx pc = {isatty(STDERR_FILENO)};
-    printf("ryushi %s: case %s, %s, %dD, %zu particles, %d thread(s), output in %s\n", RY_VERSION,
-           a.case_path, sim.scheme->name, sim.dim, sim.ps.n, omp_get_max_threads(), sim.out_dir);
-    if (used[0]) printf("restarting from %s (step %ld, t = %.6g s)\n", used, sim.step, sim.t);
+    printf("ryushi %s: case %s, %s, %dD, %zu particles, %d thread(s), output in %s\n", ry_version(),
+           a.case_path, ry_sim_scheme(sim), ry_sim_dimension(sim), ry_sim_count(sim),
+           omp_get_max_threads(), ry_sim_output_dir(sim));
+    if (used[0])
+        printf("restarting from %s (step %ld, t = %.6g s)\n", used, ry_sim_step_count(sim),
+               ry_sim_time(sim));
     fflush(stdout);
-    catch_signals();
-    ry_run_hooks hooks = {on_progress, &pc, pc.tty ? 0.5 : 10.0, &stop_requested};
-    ry_run_stats stats = {0};
-    st = ry_sim_run(&sim, &hooks, &stats, &err);
+    running = sim;
+    if (stop_requested) ry_sim_request_stop(sim);
+    ry_sim_set_progress(sim, api_progress, &pc, pc.tty ? 0.5 : 10.0);
+    rc = ry_sim_run(sim);
+    running = NULL;
     if (pc.tty) fprintf(stderr, "\n");
-    if (st != RY_OK) rc = fail(&err);
-    if (st == RY_OK && sim.stop_reason[0]) printf("%s\n", sim.stop_reason);
+    if (rc) api_fail(rc);
+    if (rc == 0 && ry_sim_stop_reason(sim)[0]) printf("%s\n", ry_sim_stop_reason(sim));
     char scheme_stats[256] = "";
-    if (sim.scheme && sim.scheme->report) {
-        scheme_stats[0] = ' ';
-        sim.scheme->report(sim.scheme_state, scheme_stats + 1, sizeof scheme_stats - 1);
-    }
+    ry_sim_report(sim, scheme_stats + 1, sizeof scheme_stats - 1);
+    if (scheme_stats[1]) scheme_stats[0] = ' ';
     printf("summary status=%s steps=%ld particles=%zu t=%.6g wall_s=%.3f "
            "particle_steps_per_s=%.4g threads=%d%s searches=%ld list_edits=%ld outputs=%d "
            "bytes_per_particle=%.0f peak_rss_mb=%.1f output=%s\n",
-           st == RY_OK ? "ok" : ry_status_name(st), stats.steps, sim.ps.n, sim.t, stats.wall_s,
-           stats.particle_steps_per_s, omp_get_max_threads(), scheme_stats, sim.searches,
-           sim.nl_edits, sim.output_index, ry_sim_bytes_per_particle(&sim), peak_rss_mb(),
-           sim.out_dir);
-    ry_sim_free(&sim);
-    ry_case_free(c);
+           rc == 0 ? "ok" : ry_last_error_kind(), (long)stat_of(sim, "steps"), ry_sim_count(sim),
+           ry_sim_time(sim), stat_of(sim, "wall_s"), stat_of(sim, "particle_steps_per_s"),
+           omp_get_max_threads(), scheme_stats, (long)stat_of(sim, "searches"),
+           (long)stat_of(sim, "list_edits"), (int)stat_of(sim, "outputs"),
+           stat_of(sim, "bytes_per_particle"), peak_rss_mb(), ry_sim_output_dir(sim));
+    ry_sim_destroy(sim);
     free(a.sets);
     return rc;
 }
@@ -284,12 +318,13 @@ static int cmd_run_mpi(int argc, char **argv) {
     char used[4300] = "", skipped[2048] = "";
     ry_status st = setup_case(&a, &c, &sim, &err);
     if (st == RY_OK && a.restart)
-        st = ry_sim_restart(&sim, a.restart, used, sizeof used, skipped, sizeof skipped, &err);
+        st = ry_restart_newest(&sim, a.restart, used, sizeof used, skipped, sizeof skipped, &err);
     if (st == RY_OK && rank == 0) {
         st = setup_case(&a, &cv, &view, &err);
         if (st == RY_OK) st = ry_sim_open_output(&view, cv, &err);
         if (st == RY_OK && a.restart)
-            st = ry_sim_restart(&view, a.restart, used, sizeof used, skipped, sizeof skipped, &err);
+            st = ry_restart_newest(&view, a.restart, used, sizeof used, skipped, sizeof skipped,
+                                   &err);
     }
     if (st == RY_OK)
         st = ry_mpi_attach(&sim, rank == 0 ? &view : NULL, MPI_COMM_WORLD, imbalance, &err);
@@ -316,7 +351,7 @@ static int cmd_run_mpi(int argc, char **argv) {
     ry_run_hooks hooks = {rank == 0 ? on_progress : NULL, &pc, pc.tty ? 0.5 : 10.0,
                           &stop_requested};
     ry_run_stats stats = {0};
-    st = ry_sim_run(&sim, &hooks, &stats, &err);
+    st = ry_run(&sim, &hooks, &stats, &err);
     /* Out of memory or a broken invariant strikes one rank: the others cannot be told. */
     if (st == RY_ERR_NOMEM || st == RY_ERR_INTERNAL) {
         fprintf(stderr, "ryushi-mpi: rank %d: ", rank);

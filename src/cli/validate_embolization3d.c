@@ -69,7 +69,7 @@ static ry_status run_or_resume(const char *cpath, int nset, const char *const *s
     ry_status st = RY_OK;
     char used[4300] = "";
     if (resume) {
-        st = ry_sim_restart(sim, odir, used, sizeof used, NULL, 0, err);
+        st = ry_restart_newest(sim, odir, used, sizeof used, NULL, 0, err);
         if (st == RY_OK) printf("  resuming from %s (t = %.4g s)\n", used, sim->t);
     }
     if (st == RY_OK) {
@@ -78,7 +78,7 @@ static ry_status run_or_resume(const char *cpath, int nset, const char *const *s
         void (*old_int)(int) = signal(SIGINT, on_signal);
         void (*old_term)(int) = signal(SIGTERM, on_signal);
         ry_run_hooks hooks = {on_progress, NULL, 300.0, &stop_requested};
-        st = ry_sim_run(sim, &hooks, stats, err);
+        st = ry_run(sim, &hooks, stats, err);
         signal(SIGINT, old_int);
         signal(SIGTERM, old_term);
     }

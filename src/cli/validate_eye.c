@@ -85,7 +85,7 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
     for (int k = 0; k < nt && st == RY_OK; ++k) {
         sim.t_end = times[k];
         ry_run_stats stats;
-        st = ry_sim_run(&sim, NULL, &stats, err);
+        st = ry_run(&sim, NULL, &stats, err);
         if (st != RY_OK) break;
         wall += stats.wall_s;
         double ff = 0, oc = 0, vin = 0, nf = 0, mean = 0;

@@ -546,13 +546,13 @@ static ry_status probe_interface_amplitude(const ry_sim *sim, double *v, ry_erro
 
 /* IISPH pressure-solve iterations: of the last step, and the mean over the run so far. */
 static ry_status probe_iisph_iters(const ry_sim *sim, double *v, ry_error *err) {
-    RY_CHECK(err, ry_sim_stat(sim, "pressure_iterations_mean", v), RY_ERR_INPUT,
+    RY_CHECK(err, ry_scheme_stat(sim, "pressure_iterations_mean", v), RY_ERR_INPUT,
              "measurement 'iisph_iterations' needs scheme iisph");
-    ry_sim_stat(sim, "pressure_iterations", v);
+    ry_scheme_stat(sim, "pressure_iterations", v);
     return RY_OK;
 }
 static ry_status probe_iisph_iters_mean(const ry_sim *sim, double *v, ry_error *err) {
-    RY_CHECK(err, ry_sim_stat(sim, "pressure_iterations_mean", v), RY_ERR_INPUT,
+    RY_CHECK(err, ry_scheme_stat(sim, "pressure_iterations_mean", v), RY_ERR_INPUT,
              "measurement 'iisph_iterations_mean' needs scheme iisph");
     return RY_OK;
 }

@@ -131,7 +131,7 @@ static ry_status probe_pressure_jump_second(const ry_sim *sim, double *v, ry_err
 
 static ry_status probe_ppe_iterations(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
-    if (!ry_sim_stat(sim, "pressure_iterations", v)) *v = 0;
+    if (!ry_scheme_stat(sim, "pressure_iterations", v)) *v = 0;
     return RY_OK;
 }
 

@@ -44,7 +44,7 @@ static ry_status probe_tip(const ry_sim *sim, double *v, int axial, ry_error *er
     double dir[3];
     *v = NAN;
     for (int d = 0; d < 3; ++d)
-        if (!ry_sim_stat(sim, dir_names[d], &dir[d])) return RY_OK;
+        if (!ry_scheme_stat(sim, dir_names[d], &dir[d])) return RY_OK;
     ry_beam b;
     double u[3];
     RY_TRY(ry_beam_geometry(sim, &b, err));
@@ -64,7 +64,7 @@ static ry_status probe_tip_axial(const ry_sim *sim, double *v, ry_error *err) {
 }
 static ry_status probe_residual(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
-    if (!ry_sim_stat(sim, "residual", v)) *v = NAN;
+    if (!ry_scheme_stat(sim, "residual", v)) *v = NAN;
     return RY_OK;
 }
 static ry_status probe_solid_ke(const ry_sim *sim, double *v, ry_error *err) {
@@ -101,7 +101,7 @@ const ry_probe ry_probe_strain_energy = {
 
 static ry_status probe_min_spacing(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
-    if (!ry_sim_stat(sim, "min_spacing", v)) *v = NAN;
+    if (!ry_scheme_stat(sim, "min_spacing", v)) *v = NAN;
     return RY_OK;
 }
 const ry_probe ry_probe_min_spacing = {

@@ -670,7 +670,7 @@ static ry_status par_output(ry_sim *sim, ry_error *err) {
         if (st == RY_OK)
             st = ry_nlist_build_cells(&v->nl, &v->cells, &v->box, r * (1 + sim->nl_skin), v->ps.n,
                                       x, err);
-        if (st == RY_OK) st = ry_sim_write_output(v, err);
+        if (st == RY_OK) st = ry_output_write(v, err);
     }
     st = share_error(P, 0, st, err);
     int idx[2] = {P->rank == 0 ? P->view->output_index : 0, P->rank == 0 ? P->view->finished : 0};

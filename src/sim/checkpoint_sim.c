@@ -340,8 +340,8 @@ ry_status ry_sim_checkpoint_now(ry_sim *sim, char *path, size_t path_size, ry_er
     return RY_OK;
 }
 
-ry_status ry_sim_restart(ry_sim *sim, const char *dir, char *used, size_t used_size, char *skipped,
-                         size_t skipped_size, ry_error *err) {
+ry_status ry_restart_newest(ry_sim *sim, const char *dir, char *used, size_t used_size,
+                            char *skipped, size_t skipped_size, ry_error *err) {
     char ckdir[4096], file[4200];
     snprintf(ckdir, sizeof ckdir, "%s/checkpoints", dir);
     long *steps;

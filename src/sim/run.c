@@ -26,23 +26,15 @@ static double largest_speed(ry_sim *sim) {
     return sim->par ? sim->par->max(sim, v) : v;
 }
 
-/* What a failing run knows of its last good state: the last step that passed its check, and
- * the newest checkpoint this run wrote (guard.last_good: replay). */
-typedef struct last_good {
-    long step;
-    long ck_step;     /* -1: none */
-    const char *ckpt; /* its file */
-} last_good;
-
-static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats,
-                          long replay_until, ry_error *err);
+static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, long max_now,
+                          double until_t, long replay_until, ry_error *err);
 
 /* On instability: the last good state goes to disk (VTK and checkpoint), named in the message.
  * By replay, the newest checkpoint of this run is read back and the run taken again from it to
  * the last checked step (the steps are the same bitwise: the state is the one the run had);
  * or from the in-memory copy (guard.last_good: memory). */
-static void keep_last_good(ry_sim *sim, const last_good *lg, const ry_run_hooks *hooks,
-                           ry_error *err) {
+static void keep_last_good(ry_sim *sim, const ry_run_hooks *hooks, ry_error *err) {
+    const ry_loop_state *lg = &sim->loop;
     const int replay = sim->guard.last_good == RY_LAST_GOOD_REPLAY && lg->ck_step >= 0;
     if (!sim->snapshot && !replay) {
         size_t l = strlen(err->msg);
@@ -59,8 +51,9 @@ static void keep_last_good(ry_sim *sim, const last_good *lg, const ry_run_hooks 
         ry_run_hooks stop_only = {0};
         if (hooks) stop_only.stop = hooks->stop;
         st = ry_sim_checkpoint_read(sim, lg->ckpt, &e);
-        if (st == RY_OK && sim->step < lg->step) st = run_loop(sim, &stop_only, NULL, lg->step, &e);
-        if (st == RY_OK && sim->step != lg->step)
+        if (st == RY_OK && sim->step < lg->good_step)
+            st = run_loop(sim, &stop_only, NULL, -1, INFINITY, lg->good_step, &e);
+        if (st == RY_OK && sim->step != lg->good_step)
             st = ry_error_set(&e, RY_ERR_INTERNAL, "the replay from %s ended at step %ld", lg->ckpt,
                               sim->step);
         if (st == RY_OK) st = ry_sim_last_good_write(sim, path, sizeof path, &e);
@@ -80,17 +73,30 @@ static void keep_last_good(ry_sim *sim, const last_good *lg, const ry_run_hooks 
 }
 
 ry_status ry_sim_output(ry_sim *sim, ry_error *err) {
-    return sim->par ? sim->par->output(sim, err) : ry_sim_write_output(sim, err);
+    return sim->par ? sim->par->output(sim, err) : ry_output_write(sim, err);
 }
 
-ry_status ry_sim_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err) {
-    return run_loop(sim, hooks, stats, -1, err);
+ry_status ry_run(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, ry_error *err) {
+    return run_loop(sim, hooks, stats, -1, INFINITY, -1, err);
 }
 
-/* The time loop; replay_until >= 0: a replay (keep_last_good) to that step, which writes the
- * outputs again as they were and no checkpoints. */
-static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats,
-                          long replay_until, ry_error *err) {
+ry_status ry_run_some(ry_sim *sim, const ry_run_hooks *hooks, long max_steps, double until_t,
+                      ry_run_stats *stats, ry_error *err) {
+    return run_loop(sim, hooks, stats, max_steps, until_t, -1, err);
+}
+
+/* Whether the run has nothing left to do. */
+static int run_over(const ry_sim *sim, double eps) {
+    return !(sim->t < sim->t_end - eps && sim->step < sim->max_steps && !sim->finished);
+}
+
+/* The time loop: at most max_now steps (< 0: no limit) and up to time until_t (landed on),
+ * within the case's end. The first call of a run writes the first output, checks the state
+ * and keeps it as the first last good one; the call that reaches the end writes the final
+ * checkpoint and output. replay_until >= 0: a replay (keep_last_good) to that step, which
+ * writes the outputs again as they were and no checkpoints. */
+static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *stats, long max_now,
+                          double until_t, long replay_until, ry_error *err) {
     const int replay = replay_until >= 0;
     double t0 = ry_wall_time(), last_report = t0;
     long step0 = sim->step;
@@ -106,21 +112,28 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
     /* The state handed in must be sound before it becomes the first "last good" one. */
     RY_TRY(ry_sim_check(sim, err));
     const int snap_every = replay ? 0 : sim->guard.snapshot_every;
-    if (snap_every > 0) RY_TRY(ry_sim_snapshot_take(sim, err));
+    ry_loop_state *lg = &sim->loop;
     const double eps = 1e-12 * sim->t_end;
-    double dt_peak = 0; /* the largest stable step of this run (guard.min_dt_ratio) */
-    char ckpt[4300] = "";
-    last_good lg = {sim->step, -1, ckpt};
-    if (!replay && !sim->par && sim->guard.last_good == RY_LAST_GOOD_REPLAY) {
-        /* the state a replay starts from (not counted in the run's speed) */
-        double w = ry_wall_time();
-        sim->ckpt.scheduled = 0;
-        RY_TRY(ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, err));
-        lg.ck_step = sim->step;
-        t0 += ry_wall_time() - w;
+    if (!replay && !lg->begun) {
+        lg->begun = 1;
+        lg->first_step = sim->step;
+        lg->dt_peak = 0;
+        lg->good_step = sim->step;
+        lg->ck_step = -1;
+        lg->ckpt[0] = '\0';
+        if (snap_every > 0) RY_TRY(ry_sim_snapshot_take(sim, err));
+        if (!sim->par && sim->guard.last_good == RY_LAST_GOOD_REPLAY) {
+            /* the state a replay starts from (not counted in the run's speed) */
+            double w = ry_wall_time();
+            sim->ckpt.scheduled = 0;
+            RY_TRY(ry_sim_checkpoint_now(sim, lg->ckpt, sizeof lg->ckpt, err));
+            lg->ck_step = sim->step;
+            t0 += ry_wall_time() - w;
+        }
     }
-    while (sim->t < sim->t_end - eps && sim->step < sim->max_steps && !sim->finished &&
-           !(replay && sim->step >= replay_until)) {
+    const long last_step = max_now >= 0 ? sim->step + max_now : -1;
+    while (!run_over(sim, eps) && !(replay && sim->step >= replay_until) &&
+           !(last_step >= 0 && sim->step >= last_step) && sim->t < until_t - eps) {
         int stop = hooks && hooks->stop && *hooks->stop;
         if (sim->par) stop = !sim->par->all(sim, !stop); /* all ranks stop at the same step */
         if (stop) {
@@ -130,7 +143,7 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
         double dt;
         st = sim->scheme->stable_dt(sim, sim->scheme_state, &dt, err);
         if (st != RY_OK) {
-            if (st == RY_ERR_UNSTABLE && !replay) keep_last_good(sim, &lg, hooks, err);
+            if (st == RY_ERR_UNSTABLE && !replay) keep_last_good(sim, hooks, err);
             goto done;
         }
         if (sim->par) dt = -sim->par->max(sim, -dt);
@@ -139,25 +152,25 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
             st = ry_error_set(err, RY_ERR_UNSTABLE,
                               "unstable at step %ld, t = %.6g s: time step %g is not positive",
                               sim->step, sim->t, dt);
-            if (!replay) keep_last_good(sim, &lg, hooks, err);
+            if (!replay) keep_last_good(sim, hooks, err);
             goto done;
         }
         /* A step that collapses (the speeds or forces of a flow that has blown up set it)
          * would let the run crawl on without end. The first steps do not count towards the
          * peak: from rest a scheme may have no limit yet and take its fallback. */
-        if (sim->step - step0 >= 10) dt_peak = fmax(dt_peak, dt);
-        if (dt < sim->guard.min_dt_ratio * dt_peak) {
+        if (!replay && sim->step - lg->first_step >= 10) lg->dt_peak = fmax(lg->dt_peak, dt);
+        if (dt < sim->guard.min_dt_ratio * lg->dt_peak) {
             st = ry_error_set(err, RY_ERR_UNSTABLE,
                               "unstable at step %ld, t = %.6g s: the time step %.4g s fell below "
                               "guard.min_dt_ratio = %g times the largest of this run (%.4g s); "
                               "largest speed %.4g m/s",
-                              sim->step, sim->t, dt, sim->guard.min_dt_ratio, dt_peak,
+                              sim->step, sim->t, dt, sim->guard.min_dt_ratio, lg->dt_peak,
                               largest_speed(sim));
-            if (!replay) keep_last_good(sim, &lg, hooks, err);
+            if (!replay) keep_last_good(sim, hooks, err);
             goto done;
         }
         /* Land on output times and the end time exactly (no sliver steps after them). */
-        double target = fmin(sim->next_output, sim->t_end);
+        double target = fmin(fmin(sim->next_output, sim->t_end), until_t);
         if (sim->t + dt > target - 1e-3 * dt)
             dt = target - sim->t;
         else if (sim->t + 2 * dt > target)
@@ -166,7 +179,7 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
         sim->checked = 0;
         st = sim->scheme->step(sim, sim->scheme_state, dt, err);
         if (st != RY_OK) {
-            if (st == RY_ERR_UNSTABLE && !replay) keep_last_good(sim, &lg, hooks, err);
+            if (st == RY_ERR_UNSTABLE && !replay) keep_last_good(sim, hooks, err);
             goto done;
         }
         sim->t += dt;
@@ -181,11 +194,11 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
                  : ry_sim_check(sim, err);
         sim->checked = 0;
         if (st != RY_OK) {
-            lg.step = sim->step - 1;
-            if (!replay) keep_last_good(sim, &lg, hooks, err);
+            if (!replay) lg->good_step = sim->step - 1;
+            if (!replay) keep_last_good(sim, hooks, err);
             goto done;
         }
-        lg.step = sim->step;
+        if (!replay) lg->good_step = sim->step;
         if (snap_every > 0 && sim->step % snap_every == 0) {
             st = ry_sim_snapshot_take(sim, err);
             if (st != RY_OK) goto done;
@@ -203,9 +216,9 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
         if (due) {
             sim->ckpt.scheduled = due == 1;
             while (sim->ckpt.next_t <= sim->t + eps) sim->ckpt.next_t += sim->ckpt.interval;
-            st = ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, err);
+            st = ry_sim_checkpoint_now(sim, lg->ckpt, sizeof lg->ckpt, err);
             if (st != RY_OK) goto done;
-            lg.ck_step = sim->step;
+            lg->ck_step = sim->step;
         }
         double now = ry_wall_time();
         if (hooks && hooks->progress && now - last_report >= hooks->progress_interval_s) {
@@ -221,11 +234,17 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
     /* A checkpoint of the final state (before its output, so that a restart from it writes
      * that output again exactly as an uninterrupted run would), then the final state's output
      * unless it was just written. */
-    if (replay) goto done;
+    if (replay || (st == RY_OK && !run_over(sim, eps)) || lg->ended) goto done;
+    lg->ended = st == RY_OK;
+    char ck_end[sizeof lg->ckpt] = "";
     if (st == RY_ERR_INTERRUPTED || sim->ckpt.at_end) {
         ry_error e = {0};
         sim->ckpt.scheduled = st != RY_ERR_INTERRUPTED; /* the end of the run is scheduled */
-        ry_status cs = ry_sim_checkpoint_now(sim, ckpt, sizeof ckpt, &e);
+        ry_status cs = ry_sim_checkpoint_now(sim, ck_end, sizeof ck_end, &e);
+        if (cs == RY_OK) {
+            memcpy(lg->ckpt, ck_end, sizeof ck_end);
+            lg->ck_step = sim->step;
+        }
         if (cs != RY_OK && st == RY_OK) {
             *err = e;
             st = cs;
@@ -236,7 +255,7 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
         ry_error_set(err, RY_ERR_INTERRUPTED,
                      "interrupted at step %ld, t = %.6g s; state written; checkpoint %s (continue "
                      "with --restart %s)",
-                     sim->step, sim->t, ckpt[0] ? ckpt : "not written", sim->out_dir);
+                     sim->step, sim->t, ck_end[0] ? ck_end : "not written", sim->out_dir);
     if (st == RY_OK || st == RY_ERR_INTERRUPTED) {
         ry_error tmp;
         ry_error *e = st == RY_OK ? err : &tmp;

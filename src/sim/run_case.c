@@ -19,7 +19,7 @@ ry_status ry_setup_case_file(const char *path, int nset, const char *const *sets
 ry_status ry_run_case_file(const char *path, int nset, const char *const *sets, const char *out_dir,
                            ry_sim *sim, ry_run_stats *stats, ry_error *err) {
     RY_TRY(ry_setup_case_file(path, nset, sets, out_dir, sim, err));
-    const ry_status st = ry_sim_run(sim, NULL, stats, err);
+    const ry_status st = ry_run(sim, NULL, stats, err);
     if (st != RY_OK) ry_sim_free(sim);
     return st;
 }

@@ -123,7 +123,7 @@ void ry_writer_free(ry_sim *sim) {
     sim->writer = NULL;
 }
 
-ry_status ry_sim_write_output(ry_sim *sim, ry_error *err) {
+ry_status ry_output_write(ry_sim *sim, ry_error *err) {
     writer *w = sim->writer;
     RY_CHECK(err, w != NULL, RY_ERR_INTERNAL, "output written before the writer was opened");
     char path[4096], name[512];

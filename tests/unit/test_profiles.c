@@ -71,7 +71,7 @@ static void test_linear_field_and_average(void **state) {
 
     /* t = 0: the instantaneous profile is sampled; the averaged one has not started. */
     set_fields(&sim, 1.0);
-    assert_int_equal(ry_sim_write_output(&sim, &err), RY_OK);
+    assert_int_equal(ry_output_write(&sim, &err), RY_OK);
     const ry_profile *vert = ry_profile_find(&sim, "vertical");
     const ry_profile *avg = ry_profile_find(&sim, "avg");
     assert_non_null(vert);
@@ -92,10 +92,10 @@ static void test_linear_field_and_average(void **state) {
     /* t = 0.5 and 1: the averaged profile takes both; the instantaneous one only the last. */
     sim.t = 0.5;
     set_fields(&sim, 2.0);
-    assert_int_equal(ry_sim_write_output(&sim, &err), RY_OK);
+    assert_int_equal(ry_output_write(&sim, &err), RY_OK);
     sim.t = 1.0;
     set_fields(&sim, 4.0);
-    assert_int_equal(ry_sim_write_output(&sim, &err), RY_OK);
+    assert_int_equal(ry_output_write(&sim, &err), RY_OK);
     assert_int_equal(vert->nsamples, 1);
     assert_int_equal(avg->nsamples, 2);
     for (int k = 0; k < avg->npoints; ++k) {

@@ -55,14 +55,14 @@ static void test_nan_stops_within_a_step(void **state) {
     assert_int_equal(setup(&sim, &c, &err), RY_OK);
     sim.max_steps = 20;
     ry_run_stats stats;
-    assert_int_equal(ry_sim_run(&sim, NULL, &stats, &err), RY_OK);
+    assert_int_equal(ry_run(&sim, NULL, &stats, &err), RY_OK);
     long good = sim.step;
     /* Poison one particle's velocity, then continue: caught before any step is taken. */
     size_t i = first_fluid(&sim, 100);
     long long id = (long long)sim.ps.id[i];
     sim.ps.f[RY_F_VX][i] = NAN;
     sim.max_steps = 1000;
-    ry_status st = ry_sim_run(&sim, NULL, &stats, &err);
+    ry_status st = ry_run(&sim, NULL, &stats, &err);
     assert_int_equal(st, RY_ERR_UNSTABLE);
     char want[128];
     snprintf(want, sizeof want, "unstable at step %ld,", good);
@@ -104,7 +104,7 @@ static void test_checkpoint_round_trip(void **state) {
     ry_error err = {0};
     assert_int_equal(setup(&a, &ca, &err), RY_OK);
     a.max_steps = 30;
-    assert_int_equal(ry_sim_run(&a, NULL, NULL, &err), RY_OK);
+    assert_int_equal(ry_run(&a, NULL, NULL, &err), RY_OK);
     char path[512];
     snprintf(path, sizeof path, "%s/round.ryc", tmpdir);
     assert_int_equal(ry_sim_checkpoint_write(&a, path, &err), RY_OK);
@@ -149,13 +149,13 @@ static void test_eta_of_a_continued_run(void **state) {
     ry_error err = {0};
     assert_int_equal(setup(&sim, &c, &err), RY_OK);
     sim.max_steps = 40;
-    assert_int_equal(ry_sim_run(&sim, NULL, NULL, &err), RY_OK);
+    assert_int_equal(ry_run(&sim, NULL, NULL, &err), RY_OK);
     assert_true(sim.t > 0 && sim.t < 0.5 * sim.t_end);
     eta_probe p = {.t_begin = sim.t};
     ry_run_hooks hooks = {.progress = record_eta, .ctx = &p, .progress_interval_s = 0};
     sim.max_steps = 80;
     p.wall0 = ry_wall_time();
-    assert_int_equal(ry_sim_run(&sim, &hooks, NULL, &err), RY_OK);
+    assert_int_equal(ry_run(&sim, &hooks, NULL, &err), RY_OK);
     assert_true(p.calls > 0);
     /* Counted from t = 0, the estimate would be (t - t_begin) / t, about half, of this. */
     assert_true(p.eta > 0.8 * p.expect && p.eta < 1.25 * p.expect);
@@ -219,7 +219,7 @@ static void test_in_wall_counts_current_positions(void **state) {
     assert_int_equal(setup(&sim, &c, &err), RY_OK);
     sim.max_steps = 2;
     ry_run_stats stats;
-    assert_int_equal(ry_sim_run(&sim, NULL, &stats, &err), RY_OK);
+    assert_int_equal(ry_run(&sim, NULL, &stats, &err), RY_OK);
     const ry_probe *probe = NULL;
     for (const ry_probe *const *p = ry_probes(); *p; ++p)
         if (strcmp((*p)->name, "in_wall") == 0) probe = *p;
