@@ -46,7 +46,7 @@ schemes mps.h schemes.h
 measure probes.h validate.h solid.h
 sim run.h output.h
 api ryushi.h
-validate plot.h
+validate plot.h manifest.h
 EOF
 
 # file -> layer number (every file under src/ and include/ryushi/)

@@ -1,5 +1,7 @@
 /* ryushi validate: the full-resolution validation cases, compared with their references,
- * with plots. Results are recorded in docs/validation.md. */
+ * with plots. Each has a manifest, validation/NAME.yaml (its summary, whether plain `ryushi
+ * validate` runs it, its tolerances), and a function here that runs it. Results are recorded
+ * in docs/validation.md. */
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -7,46 +9,70 @@
 
 #include "cli/cli.h"
 #include "ryushi/atomic_file.h"
+#include "ryushi/manifest.h"
 
-/* A validation by name; `all` runs those marked in_all, in this order. */
+/* The function that runs a validation, by its manifest's name. */
 typedef struct validation {
     const char *name;
     int (*run)(const char *root, const char *out, int quick, int *failures);
-    int in_all;
 } validation;
 
 static const validation validations[] = {
-    {"dam_break", ry_cli_validate_dam_break, 1},
-    {"cavity", ry_cli_validate_cavity, 1},
-    {"channel", ry_cli_validate_channel, 1},
-    {"cantilever", ry_cli_validate_cantilever, 1},
-    {"plate", ry_cli_validate_plate, 1},
-    {"buckling", ry_cli_validate_buckling, 1},
-    {"mps", ry_cli_validate_mps, 1},
-    {"rheology", ry_cli_validate_rheology, 1},
-    {"iisph", ry_cli_validate_iisph, 1},
-    {"rt", ry_cli_validate_rt, 0},
-    {"air", ry_cli_validate_air, 0},
-    {"eye", ry_cli_validate_eye, 0},
-    {"eye_positions", ry_cli_validate_eye_positions, 0},
-    {"eye_clinical", ry_cli_validate_eye_clinical, 0},
-    {"embolization", ry_cli_validate_embolization, 0},
-    {"embolization3d", ry_cli_validate_embolization3d, 0},
-    {"embolization3d_all", ry_cli_validate_embolization3d_all, 0},
-    {"embolization3d_wide", ry_cli_validate_embolization3d_wide, 0},
-    {"wetting", ry_cli_validate_wetting, 0},
+    {"dam_break", ry_cli_validate_dam_break},
+    {"cavity", ry_cli_validate_cavity},
+    {"channel", ry_cli_validate_channel},
+    {"cantilever", ry_cli_validate_cantilever},
+    {"plate", ry_cli_validate_plate},
+    {"buckling", ry_cli_validate_buckling},
+    {"mps", ry_cli_validate_mps},
+    {"rheology", ry_cli_validate_rheology},
+    {"iisph", ry_cli_validate_iisph},
+    {"rt", ry_cli_validate_rt},
+    {"air", ry_cli_validate_air},
+    {"eye", ry_cli_validate_eye},
+    {"eye_positions", ry_cli_validate_eye_positions},
+    {"eye_clinical", ry_cli_validate_eye_clinical},
+    {"embolization", ry_cli_validate_embolization},
+    {"embolization3d", ry_cli_validate_embolization3d},
+    {"embolization3d_all", ry_cli_validate_embolization3d_all},
+    {"embolization3d_wide", ry_cli_validate_embolization3d_wide},
+    {"wetting", ry_cli_validate_wetting},
 };
 enum { NVALIDATIONS = sizeof validations / sizeof validations[0] };
 
+static void usage(FILE *fp) {
+    fprintf(fp,
+            "usage: ryushi validate [NAME | all] [--quick] [-o DIR] [--threads N] [--root DIR]\n"
+            "       ryushi validate --list | --help\n"
+            "\n"
+            "Runs validation cases against their references, with plots and a PASS or FAIL line\n"
+            "per check (exit code 1 when a check fails). Plain `ryushi validate` (or `all`) runs\n"
+            "those --list marks as in `all`; NAME runs one. --quick: the short version (fewer\n"
+            "resolutions). -o: the output folder (default out/validate). --root: the project\n"
+            "folder with cases/, data/ and validation/ (default: the source tree). Each\n"
+            "validation's summary and tolerances are in validation/NAME.yaml.\n");
+}
+
+static const validation *runner(const char *name) {
+    for (int k = 0; k < NVALIDATIONS; ++k)
+        if (strcmp(name, validations[k].name) == 0) return &validations[k];
+    return NULL;
+}
+
 int ry_cli_validate(int argc, char **argv) {
     const char *root = RY_SOURCE_DIR, *out = "out/validate";
-    int quick = 0, failures = 0;
+    int quick = 0, failures = 0, list = 0;
     const char *root_env = getenv("RY_SOURCE_DIR");
     if (root_env && *root_env) root = root_env;
     const char *what = "all";
     for (int i = 2; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0)
             quick = 1;
+        else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(argv[i], "--list") == 0)
+            list = 1;
         else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
             out = argv[++i];
         else if (strcmp(argv[i], "--root") == 0 && i + 1 < argc)
@@ -56,29 +82,47 @@ int ry_cli_validate(int argc, char **argv) {
         else if (argv[i][0] != '-')
             what = argv[i];
         else {
-            fprintf(stderr, "ryushi: validate: unknown option '%s'\n", argv[i]);
+            fprintf(stderr, "ryushi: validate: unknown option '%s' (see ryushi validate --help)\n",
+                    argv[i]);
             return 2;
         }
     }
-    const int all = strcmp(what, "all") == 0;
-    const validation *one = NULL;
-    for (int k = 0; k < NVALIDATIONS; ++k)
-        if (strcmp(what, validations[k].name) == 0) one = &validations[k];
-    if (!all && !one) {
-        fprintf(stderr, "ryushi: validate: expected ");
-        for (int k = 0; k < NVALIDATIONS; ++k) fprintf(stderr, "%s, ", validations[k].name);
-        fprintf(stderr, "or all, got '%s'\n", what);
-        return 2;
-    }
     ry_error err = {0};
-    if (ry_mkdir_p(out, &err) != RY_OK) {
+    ry_manifest *all;
+    int n;
+    if (ry_manifest_all(root, &all, &n, &err) != RY_OK) {
         fprintf(stderr, "ryushi: validate: %s\n", err.msg);
-        return 3;
+        return ry_status_exit_code(err.code);
     }
-    for (int k = 0; k < NVALIDATIONS; ++k)
-        if (all ? validations[k].in_all : &validations[k] == one)
-            validations[k].run(root, out, quick, &failures);
-    printf("validate: %s (%d failure(s)); output in %s\n", failures ? "FAILED" : "passed", failures,
-           out);
-    return failures ? 1 : 0;
+    int rc = 0;
+    for (int k = 0; k < n && !rc; ++k)
+        if (!runner(all[k].name)) {
+            fprintf(stderr, "ryushi: validate: %s: no validation of that name in the program\n",
+                    all[k].path);
+            rc = 1;
+        }
+    const ry_manifest *one = NULL;
+    for (int k = 0; k < n; ++k)
+        if (strcmp(what, all[k].name) == 0) one = &all[k];
+    const int every = strcmp(what, "all") == 0;
+    if (!rc && list) {
+        for (int k = 0; k < n; ++k)
+            printf("%-20s %-4s %s\n", all[k].name, all[k].in_all ? "all" : "", all[k].summary);
+    } else if (!rc && !every && !one) {
+        fprintf(stderr, "ryushi: validate: no validation '%s' (ryushi validate --list)\n", what);
+        rc = 2;
+    } else if (!rc && ry_mkdir_p(out, &err) != RY_OK) {
+        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
+        rc = 3;
+    } else if (!rc) {
+        for (int k = 0; k < n; ++k)
+            if (every ? all[k].in_all : &all[k] == one)
+                runner(all[k].name)->run(root, out, quick, &failures);
+        printf("validate: %s (%d failure(s)); output in %s\n", failures ? "FAILED" : "passed",
+               failures, out);
+        rc = failures ? 1 : 0;
+    }
+    for (int k = 0; k < n; ++k) ry_manifest_free(&all[k]);
+    free(all);
+    return rc;
 }

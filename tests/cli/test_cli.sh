@@ -95,4 +95,13 @@ for f in "$SRC"/cases/*.yaml; do
     "$RY" info "$f" > "$T/info.log" 2>&1 && ok || bad "$f does not load: $(tail -n 2 "$T/info.log")"
 done
 
+# validate: its help, the list from validation/*.yaml (every manifest with a runner), an unknown
+# name
+expect 0 "usage: ryushi validate" "$RY" validate --help
+expect 0 "^dam_break  *all  *WCSPH dam break" "$RY" validate --list
+n=$("$RY" validate --list | wc -l)
+m=$(ls "$SRC"/validation/*.yaml | wc -l)
+[ "$n" -eq "$m" ] && ok || bad "validate --list shows $n validations, validation/ holds $m"
+expect 2 "no validation 'nope'" "$RY" validate nope
+
 finish
