@@ -13,10 +13,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "ryushi/manifest.h"
 #include "ryushi/validate.h"
 #define RY_TMPDIR_PREFIX "ryushi_wcsph_"
 #include "run_case.h"
+#include "manifest_tol.h"
 #include "ryushi/run.h"
 #include "schemes/wcsph/wcsph_internal.h"
 
@@ -32,16 +32,7 @@ static void run(const char *case_rel, const char *sub, int nset, const char *con
 
 /* Tolerance `key` of validation/NAME.yaml, the one place it is stated. */
 static double tol(const char *name, const char *key) {
-    ry_manifest m;
-    ry_error err = {0};
-    double v = NAN;
-    if (ry_manifest_load(&m, root, name, &err) == RY_OK) {
-        if (ry_manifest_tol(&m, key, &v, &err) != RY_OK) v = NAN;
-        ry_manifest_free(&m);
-    }
-    if (isnan(v)) fprintf(stderr, "%s\n", err.msg);
-    assert_false(isnan(v));
-    return v;
+    return manifest_tol(root, name, key);
 }
 
 /* Martin & Moyce column at a/20: the surge front against the experiment in Z = front/a for
