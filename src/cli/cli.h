@@ -31,6 +31,10 @@ int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failu
 /* Sessile drops only (part of ry_cli_validate_mps): CSF with a contact angle and two liquids
  * with an angle per liquid. */
 int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *failures);
+/* The tolerances keys[0..n-1] of validation/name.yaml into values; 0, or 1 with the error
+ * printed and counted as a failure. */
+int ry_cli_tolerances(const char *root, const char *name, int n, const char *const *keys,
+                      double *values, int *failures);
 /* Prints a validation's error and counts a failure; returns 1. */
 int ry_cli_fail(int *failures, const ry_error *err);
 /* Prints a validation check's line (PASS or FAIL) and counts a failure. */

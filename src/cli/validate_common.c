@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "cli/cli.h"
+#include "ryushi/manifest.h"
 
 ry_status ry_cli_add_series(ry_plot *p, int panel, const char *label, const ry_table *t,
                             const char *cx, double sx, const char *cy, double sy,
@@ -73,6 +74,16 @@ void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failu
     } else {
         printf("  plot: %s\n", png);
     }
+}
+
+int ry_cli_tolerances(const char *root, const char *name, int n, const char *const *keys,
+                      double *values, int *failures) {
+    ry_manifest m;
+    ry_error err = {0};
+    ry_status st = ry_manifest_load(&m, root, name, &err);
+    for (int k = 0; k < n && st == RY_OK; ++k) st = ry_manifest_tol(&m, keys[k], &values[k], &err);
+    if (m.doc) ry_manifest_free(&m);
+    return st == RY_OK ? 0 : ry_cli_fail(failures, &err);
 }
 
 int ry_cli_fail(int *failures, const ry_error *err) {
