@@ -2,6 +2,8 @@
 #ifndef RYUSHI_CLI_H
 #define RYUSHI_CLI_H
 
+#include <stdio.h>
+
 #include "ryushi/csv.h"
 #include "ryushi/plot.h"
 #include "ryushi/sim.h"
@@ -37,8 +39,10 @@ int ry_cli_tolerances(const char *root, const char *name, int n, const char *con
                       double *values, int *failures);
 /* Prints a validation's error and counts a failure; returns 1. */
 int ry_cli_fail(int *failures, const ry_error *err);
-/* Prints a validation check's line (PASS or FAIL) and counts a failure. */
+/* Prints a validation check's line (PASS or FAIL), counts a failure, and records the check
+ * as a CSV row ("check",verdict) in the file given to ry_cli_results (NULL: none). */
 void ry_cli_check(const char *what, int ok, int *failures);
+void ry_cli_results(FILE *fp);
 /* Writes plot p as out/name (PNG) and prints where; a failure is printed and counted. */
 void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failures);
 /* A series column times k in a new array (the caller frees it); NULL when the column is

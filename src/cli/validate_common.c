@@ -59,9 +59,23 @@ double *ry_cli_scaled_column(const ry_table *s, const char *name, double k) {
     return v;
 }
 
+/* Where the checks of the running validation are recorded (ry_cli_results). */
+static FILE *results;
+
+void ry_cli_results(FILE *fp) {
+    results = fp;
+}
+
 void ry_cli_check(const char *what, int ok, int *failures) {
     printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
     if (!ok) ++*failures;
+    if (!results) return;
+    fputc('"', results);
+    for (const char *c = what; *c; ++c) {
+        if (*c == '"') fputc('"', results);
+        fputc(*c, results);
+    }
+    fprintf(results, "\",%s\n", ok ? "PASS" : "FAIL");
 }
 
 void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failures) {

@@ -43,8 +43,7 @@ static void irun_free(irun *r) {
 }
 
 static void verdict(int *failures, const char *what, int ok) {
-    printf("  %-66s %s\n", what, ok ? "PASS" : "FAIL");
-    if (!ok) ++*failures;
+    ry_cli_check(what, ok, failures);
 }
 
 static int fail(int *failures, const ry_error *err) {

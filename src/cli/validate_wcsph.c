@@ -32,8 +32,7 @@ static int report(vctx *v, const ry_error *err) {
 }
 
 static void verdict(vctx *v, const char *what, int ok) {
-    printf("  %-60s %s\n", what, ok ? "PASS" : "FAIL");
-    if (!ok) v->failures++;
+    ry_cli_check(what, ok, &v->failures);
 }
 
 /* Runs a case with overrides into out/sub, reads its series.csv. */
