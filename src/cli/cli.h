@@ -42,6 +42,9 @@ int ry_cli_fail(int *failures, const ry_error *err);
 /* Prints a validation check's line (PASS or FAIL), counts a failure, and records the check
  * as a CSV row ("check",verdict) in the file given to ry_cli_results (NULL: none). */
 void ry_cli_check(const char *what, int ok, int *failures);
+/* The same for a check of one measured figure against a tolerance (ok: the check's verdict),
+ * both recorded for the report. */
+void ry_cli_check_figure(const char *what, double figure, double tolerance, int ok, int *failures);
 void ry_cli_results(FILE *fp);
 /* Writes plot p as out/name (PNG) and prints where; a failure is printed and counted. */
 void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failures);

@@ -93,13 +93,23 @@ static int report(ry_manifest *all, int n, const char *out) {
                 if (ref) fprintf(md, " Reference: `%s`.", ref);
                 fprintf(md, "\n\n");
                 if (!fp) fprintf(md, "Not run.\n");
-                if (fp) fprintf(md, "| check | verdict |\n|---|---|\n");
+                if (fp)
+                    fprintf(md, "| check | figure | tolerance | verdict |\n|---|---|---|---|\n");
             }
             while (fp && fgets(line, sizeof line, fp)) {
-                char *comma = strrchr(line, ',');
-                if (!comma || line[0] == '#') continue;
-                *comma = '\0';
-                const int ok = strncmp(comma + 1, "PASS", 4) == 0;
+                /* "text",figure,tolerance,verdict: the last three fields after the last three
+                 * commas */
+                char *c3 = strrchr(line, ',');
+                if (!c3 || line[0] == '#') continue;
+                *c3 = '\0';
+                char *c2 = strrchr(line, ',');
+                if (!c2) continue;
+                *c2 = '\0';
+                char *c1 = strrchr(line, ',');
+                if (!c1) continue;
+                *c1 = '\0';
+                char *comma = c1;
+                const int ok = strncmp(c3 + 1, "PASS", 4) == 0;
                 /* the check's text, unquoted (CSV: "text", inner quotes doubled) */
                 char *w = line;
                 if (line[0] == '"' && comma > line + 1 && comma[-1] == '"') {
@@ -113,7 +123,15 @@ static int report(ry_manifest *all, int n, const char *out) {
                 }
                 ++checks;
                 passed += ok;
-                if (pass == 1) fprintf(md, "| %s | %s |\n", w, ok ? "PASS" : "**FAIL**");
+                if (pass == 1) {
+                    fputs("| ", md);
+                    for (const char *c = w; *c; ++c) {
+                        if (*c == '|') fputc('\\', md); /* (a table's cell) */
+                        fputc(*c, md);
+                    }
+                    fprintf(md, " | %s | %s | %s |\n", c1[1] ? c1 + 1 : "-", c2[1] ? c2 + 1 : "-",
+                            ok ? "PASS" : "**FAIL**");
+                }
             }
             if (fp) fclose(fp);
             if (pass == 0)

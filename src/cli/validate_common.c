@@ -66,8 +66,13 @@ void ry_cli_results(FILE *fp) {
     results = fp;
 }
 
-void ry_cli_check(const char *what, int ok, int *failures) {
-    printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
+/* A check's line and its row of the results: "what",figure,tolerance,verdict (the figure and
+ * the tolerance empty when NAN). */
+static void check_row(const char *what, double figure, double tolerance, int ok, int *failures) {
+    if (isnan(figure))
+        printf("  %-64s %s\n", what, ok ? "PASS" : "FAIL");
+    else
+        printf("  %-64s %s (%.4g)\n", what, ok ? "PASS" : "FAIL", figure);
     if (!ok) ++*failures;
     if (!results) return;
     fputc('"', results);
@@ -75,7 +80,19 @@ void ry_cli_check(const char *what, int ok, int *failures) {
         if (*c == '"') fputc('"', results);
         fputc(*c, results);
     }
-    fprintf(results, "\",%s\n", ok ? "PASS" : "FAIL");
+    fputs("\",", results);
+    if (!isnan(figure)) fprintf(results, "%.6g", figure);
+    fputc(',', results);
+    if (!isnan(tolerance)) fprintf(results, "%.6g", tolerance);
+    fprintf(results, ",%s\n", ok ? "PASS" : "FAIL");
+}
+
+void ry_cli_check(const char *what, int ok, int *failures) {
+    check_row(what, NAN, NAN, ok, failures);
+}
+
+void ry_cli_check_figure(const char *what, double figure, double tolerance, int ok, int *failures) {
+    check_row(what, figure, tolerance, ok, failures);
 }
 
 void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failures) {
