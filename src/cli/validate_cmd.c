@@ -155,7 +155,8 @@ static const validation *runner(const char *name) {
 
 int ry_cli_validate(int argc, char **argv) {
     const char *root = RY_SOURCE_DIR, *out = "out/validate";
-    int quick = 0, failures = 0, list = 0;
+    enum { RUN, LIST, REPORT } mode = RUN;
+    int quick = 0, failures = 0;
     const char *root_env = getenv("RY_SOURCE_DIR");
     if (root_env && *root_env) root = root_env;
     const char *what = "all";
@@ -166,9 +167,9 @@ int ry_cli_validate(int argc, char **argv) {
             usage(stdout);
             return 0;
         } else if (strcmp(argv[i], "--list") == 0)
-            list = 1;
+            mode = LIST;
         else if (strcmp(argv[i], "--report") == 0)
-            list = 2;
+            mode = REPORT;
         else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
             out = argv[++i];
         else if (strcmp(argv[i], "--root") == 0 && i + 1 < argc)
@@ -201,9 +202,9 @@ int ry_cli_validate(int argc, char **argv) {
     for (int k = 0; k < n; ++k)
         if (strcmp(what, all[k].name) == 0) one = &all[k];
     const int every = strcmp(what, "all") == 0;
-    if (!rc && list == 2) {
+    if (!rc && mode == REPORT) {
         rc = report(all, n, out);
-    } else if (!rc && list) {
+    } else if (!rc && mode == LIST) {
         for (int k = 0; k < n; ++k)
             printf("%-20s %-4s %s\n", all[k].name, all[k].in_all ? "all" : "", all[k].summary);
     } else if (!rc && !every && !one) {

@@ -334,15 +334,11 @@ static int channel(vctx *v) {
     ry_error err = {0};
     const double U = 0.1, H = 0.1;
     /* the tolerances of validation/channel.yaml */
-    ry_manifest man;
-    if (ry_manifest_load(&man, v->root, "channel", &err) != RY_OK) return report(v, &err);
-    double t_rms, t_max, t_uc, t_bal;
-    ry_status mst = ry_manifest_tol(&man, "poiseuille_rms", &t_rms, &err);
-    if (mst == RY_OK) mst = ry_manifest_tol(&man, "poiseuille_max", &t_max, &err);
-    if (mst == RY_OK) mst = ry_manifest_tol(&man, "centreline", &t_uc, &err);
-    if (mst == RY_OK) mst = ry_manifest_tol(&man, "balance", &t_bal, &err);
-    ry_manifest_free(&man);
-    if (mst != RY_OK) return report(v, &err);
+    static const char *const keys[4] = {"poiseuille_rms", "poiseuille_max", "centreline",
+                                        "balance"};
+    double tol[4];
+    if (ry_cli_tolerances(v->root, "channel", 4, keys, tol, &v->failures)) return 1;
+    const double t_rms = tol[0], t_max = tol[1], t_uc = tol[2], t_bal = tol[3];
     ry_plot *p = NULL;
     if (ry_plot_new(&p, 1, 2, 1400, 600, &err) != RY_OK) return report(v, &err);
     ry_plot_panel(p, 0, "u across the channel at x = 0.3 m (mean over t = 3..4 s)", "u / U",
