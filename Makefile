@@ -11,7 +11,7 @@ else
 TEST_FUZZ_SECONDS ?= 10
 endif
 
-.PHONY: all deps build demo test test-fast asan fuzz fuzz-build format format-check clean
+.PHONY: all deps build demo python test test-fast asan fuzz fuzz-build format format-check clean
 
 all: build
 
@@ -26,6 +26,11 @@ build: deps $(BUILD)/CMakeCache.txt
 
 demo: build
 	@sh scripts/demo.sh $(BUILD)/ryushi
+
+# The Python package (python/ryushi, docs/python.md) for Debian's python3: the library built and
+# the package put on python3's path, so that `python3 -c 'import ryushi'` works.
+python: build
+	@sh scripts/python-setup.sh $(BUILD)
 
 # Whole suite: release build (unit, physics and command-line tests), then the unit tests
 # again under AddressSanitizer and UndefinedBehaviorSanitizer, then a short fuzz run of every

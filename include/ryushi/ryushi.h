@@ -87,6 +87,10 @@ RY_API const char *ry_sim_field_unit(const ry_sim *sim, const char *name);
 /* A measured quantity by name, as `ryushi probes` lists them (the first value of a probe with
  * several). */
 RY_API int ry_sim_probe(ry_sim *sim, const char *name, double *value);
+/* The probes by index from 0 (NULL past the last): the name ry_sim_probe takes and a line on
+ * what it measures, as `ryushi probes` lists them. */
+RY_API const char *ry_probe_name(int index);
+RY_API const char *ry_probe_summary(int index);
 /* A statistic of the run: "steps" (of the last ry_sim_run, ry_sim_step or ry_sim_advance_to
  * call), "wall_s" and "particle_steps_per_s" (of that call), "outputs", "searches",
  * "list_edits", "bytes_per_particle", or the scheme's (e.g. "iisph_iterations_mean"). */

@@ -321,6 +321,24 @@ int ry_sim_probe(ry_sim *sim, const char *name, double *value) {
     return fail_input("no probe '%s' (`ryushi probes` lists them)", name);
 }
 
+/* The index-th probe, NULL past the last. */
+static const ry_probe *probe_at(int index) {
+    const ry_probe *const *p = ry_probes();
+    for (int i = 0; index >= 0 && p[i]; ++i)
+        if (i == index) return p[i];
+    return NULL;
+}
+
+const char *ry_probe_name(int index) {
+    const ry_probe *p = probe_at(index);
+    return p ? p->name : NULL;
+}
+
+const char *ry_probe_summary(int index) {
+    const ry_probe *p = probe_at(index);
+    return p ? p->summary : NULL;
+}
+
 int ry_sim_stat(const ry_sim *sim, const char *name, double *value) {
     if (!sim || !name || !value) return fail_input("ry_sim_stat: %s", "missing argument");
     const api_state *a = state_of(sim);

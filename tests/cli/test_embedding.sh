@@ -2,7 +2,7 @@
 # The library as a user embeds it: installed with `cmake --install` into a prefix, the complete
 # example of docs/embedding.md compiled against the installed header through pkg-config and run;
 # libryushi.so exports the interface of ryushi.h alone and links no cairo; Python drives it
-# through ctypes (tests/api/ctypes_dam_break.py).
+# through ctypes (tests/api/ctypes_dam_break.py), and the installed Python package finds it.
 # usage: test_embedding.sh RYUSHI SOURCE_DIR
 set -u
 RY=$1
@@ -13,7 +13,8 @@ LIB="$BUILD/libryushi.so"
 
 cmake --install "$BUILD" --prefix "$T/inst" > "$T/install.log" 2>&1 && ok ||
     bad "cmake --install failed: $(cat "$T/install.log")"
-for f in bin/ryushi lib/libryushi.so include/ryushi/ryushi.h lib/pkgconfig/ryushi.pc; do
+for f in bin/ryushi lib/libryushi.so include/ryushi/ryushi.h lib/pkgconfig/ryushi.pc \
+    lib/python3/dist-packages/ryushi/__init__.py; do
     [ -e "$T/inst/$f" ] || bad "not installed: $f"
 done
 
@@ -42,6 +43,12 @@ PY=/usr/bin/python3
 [ -x "$PY" ] || PY=python3
 "$PY" "$SRC/tests/api/ctypes_dam_break.py" "$LIB" "$SRC/cases" "$T/py" > "$T/py.log" 2>&1 && ok ||
     bad "ctypes: $(cat "$T/py.log")"
+
+# the installed Python package finds the installed library
+where=$(cd "$T" && env -u RYUSHI_LIBRARY PYTHONPATH="$T/inst/lib/python3/dist-packages" "$PY" -c \
+    'import ryushi; print(ryushi.library)' 2>&1)
+[ "$where" = "$T/inst/lib/libryushi.so" ] && ok ||
+    bad "the installed package: $where (want $T/inst/lib/libryushi.so)"
 
 printf "embedding tests: "
 finish
