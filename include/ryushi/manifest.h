@@ -22,6 +22,9 @@ void ry_manifest_free(ry_manifest *m);
 ry_status ry_manifest_tol(ry_manifest *m, const char *key, double *value, ry_error *err);
 /* Text `key` of the manifest, or def when absent. */
 const char *ry_manifest_text(ry_manifest *m, const char *key, const char *def);
+/* Item i (from 0) of list `key` of the manifest (a single text counts as a list of one), or
+ * NULL past its end or when absent. */
+const char *ry_manifest_item(ry_manifest *m, const char *key, int i);
 /* Every manifest under root/validation, in their order (*n of them; free each with
  * ry_manifest_free, then the array). */
 ry_status ry_manifest_all(const char *root, ry_manifest **all, int *n, ry_error *err);

@@ -11,6 +11,13 @@
 int ry_cli_bench(int argc, char **argv);
 int ry_cli_plot(int argc, char **argv);
 int ry_cli_validate(int argc, char **argv);
+struct ry_manifest;
+/* The report of `ryushi validate --report` from the manifests all[0..n-1] and the results in
+ * out (validate_report.c): out/validation_report.md, and between the report's markers in into
+ * (NULL: none); returns the exit code. */
+int ry_cli_validate_report(struct ry_manifest *all, int n, const char *out, const char *into);
+/* out/results_NAME.csv: the checks of the last run of validation name. */
+void ry_cli_results_path(char *buf, size_t size, const char *out, const char *name);
 /* Adds column cy against column cx of a table, each scaled, as a series of a plot panel
  * (validate_cmd.c); an error names a missing column. */
 ry_status ry_cli_add_series(ry_plot *p, int panel, const char *label, const ry_table *t,

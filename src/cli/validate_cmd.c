@@ -1,7 +1,7 @@
 /* ryushi validate: the full-resolution validation cases, compared with their references,
  * with plots. Each has a manifest, validation/NAME.yaml (its summary, whether plain `ryushi
- * validate` runs it, its tolerances), and a function here that runs it. Results are recorded
- * in docs/validation.md. */
+ * validate` runs it, its tolerances), and a function here that runs it; each run records its
+ * checks for the report (validate_report.c). */
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,7 +43,7 @@ enum { NVALIDATIONS = sizeof validations / sizeof validations[0] };
 static void usage(FILE *fp) {
     fprintf(fp,
             "usage: ryushi validate [NAME | all] [--quick] [-o DIR] [--threads N] [--root DIR]\n"
-            "       ryushi validate --list | --report [-o DIR] | --help\n"
+            "       ryushi validate --list | --report [-o DIR] [--into FILE] | --help\n"
             "\n"
             "Runs validation cases against their references, with plots and a PASS or FAIL line\n"
             "per check (exit code 1 when a check fails). Plain `ryushi validate` (or `all`) runs\n"
@@ -52,99 +52,9 @@ static void usage(FILE *fp) {
             "folder with cases/, data/ and validation/ (default: the source tree). Each\n"
             "validation's summary and tolerances are in validation/NAME.yaml. Each run\n"
             "records its checks in DIR/results_NAME.csv; --report writes them, with the\n"
-            "summaries, references and commands, to DIR/validation_report.md.\n");
-}
-
-/* OUT/results_NAME.csv: the checks of the last run of validation NAME. */
-static void results_path(char *buf, size_t size, const char *out, const char *name) {
-    snprintf(buf, size, "%s/results_%s.csv", out, name);
-}
-
-/* OUT/validation_report.md from every validation's manifest and the results in OUT: per
- * validation its summary, reference, the version run and the command, then each check and its
- * verdict. */
-static int report(ry_manifest *all, int n, const char *out) {
-    char path[4200];
-    snprintf(path, sizeof path, "%s/validation_report.md", out);
-    ry_error err = {0};
-    ry_atomic_file af = {0};
-    if (ry_atomic_open(&af, path, &err) != RY_OK) {
-        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
-        return 3;
-    }
-    FILE *md = af.fp;
-    fprintf(md,
-            "# Validation report\n\nWritten by `ryushi validate --report` (ryushi %s) from the "
-            "results in %s: each validation's checks as its last run gave them. The "
-            "tolerances are in validation/NAME.yaml.\n\n"
-            "| validation | version run | checks | passed | command |\n|---|---|---|---|---|\n",
-            RY_VERSION, out);
-    for (int pass = 0; pass < 2; ++pass)
-        for (int k = 0; k < n; ++k) {
-            char rp[4300], line[1024], version[16] = "";
-            results_path(rp, sizeof rp, out, all[k].name);
-            FILE *fp = fopen(rp, "r");
-            int checks = 0, passed = 0;
-            if (fp && fgets(line, sizeof line, fp))
-                snprintf(version, sizeof version, "%s", strstr(line, "quick") ? "quick" : "full");
-            if (pass == 1) {
-                fprintf(md, "\n## %s\n\n%s.", all[k].name, all[k].summary);
-                const char *ref = ry_manifest_text(&all[k], "reference", NULL);
-                if (ref) fprintf(md, " Reference: `%s`.", ref);
-                fprintf(md, "\n\n");
-                if (!fp) fprintf(md, "Not run.\n");
-                if (fp)
-                    fprintf(md, "| check | figure | tolerance | verdict |\n|---|---|---|---|\n");
-            }
-            while (fp && fgets(line, sizeof line, fp)) {
-                /* "text",figure,tolerance,verdict: the last three fields after the last three
-                 * commas */
-                char *c3 = strrchr(line, ',');
-                if (!c3 || line[0] == '#') continue;
-                *c3 = '\0';
-                char *c2 = strrchr(line, ',');
-                if (!c2) continue;
-                *c2 = '\0';
-                char *c1 = strrchr(line, ',');
-                if (!c1) continue;
-                *c1 = '\0';
-                char *comma = c1;
-                const int ok = strncmp(c3 + 1, "PASS", 4) == 0;
-                /* the check's text, unquoted (CSV: "text", inner quotes doubled) */
-                char *w = line;
-                if (line[0] == '"' && comma > line + 1 && comma[-1] == '"') {
-                    comma[-1] = '\0';
-                    char *d = line;
-                    for (const char *c = line + 1; *c; ++c) {
-                        *d++ = *c;
-                        if (*c == '"' && c[1] == '"') ++c;
-                    }
-                    *d = '\0';
-                }
-                ++checks;
-                passed += ok;
-                if (pass == 1) {
-                    fputs("| ", md);
-                    for (const char *c = w; *c; ++c) {
-                        if (*c == '|') fputc('\\', md); /* (a table's cell) */
-                        fputc(*c, md);
-                    }
-                    fprintf(md, " | %s | %s | %s |\n", c1[1] ? c1 + 1 : "-", c2[1] ? c2 + 1 : "-",
-                            ok ? "PASS" : "**FAIL**");
-                }
-            }
-            if (fp) fclose(fp);
-            if (pass == 0)
-                fprintf(md, "| %s | %s | %d | %d | `ryushi validate %s%s` |\n", all[k].name,
-                        fp ? version : "not run", checks, passed, all[k].name,
-                        strcmp(version, "quick") == 0 ? " --quick" : "");
-        }
-    if (ry_atomic_commit(&af, &err) != RY_OK) {
-        fprintf(stderr, "ryushi: validate: %s\n", err.msg);
-        return 3;
-    }
-    printf("validate: report in %s\n", path);
-    return 0;
+            "summaries, references, commands, times and plots, to DIR/validation_report.md,\n"
+            "and with --into FILE also between the report's markers in FILE (the lines\n"
+            "<!-- ryushi validate --report: begin --> and <!-- ... end -->).\n");
 }
 
 static const validation *runner(const char *name) {
@@ -154,7 +64,7 @@ static const validation *runner(const char *name) {
 }
 
 int ry_cli_validate(int argc, char **argv) {
-    const char *root = RY_SOURCE_DIR, *out = "out/validate";
+    const char *root = RY_SOURCE_DIR, *out = "out/validate", *into = NULL;
     enum { RUN, LIST, REPORT } mode = RUN;
     int quick = 0, failures = 0;
     const char *root_env = getenv("RY_SOURCE_DIR");
@@ -172,6 +82,8 @@ int ry_cli_validate(int argc, char **argv) {
             mode = REPORT;
         else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
             out = argv[++i];
+        else if (strcmp(argv[i], "--into") == 0 && i + 1 < argc)
+            into = argv[++i];
         else if (strcmp(argv[i], "--root") == 0 && i + 1 < argc)
             root = argv[++i];
         else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc)
@@ -203,10 +115,13 @@ int ry_cli_validate(int argc, char **argv) {
         if (strcmp(what, all[k].name) == 0) one = &all[k];
     const int every = strcmp(what, "all") == 0;
     if (!rc && mode == REPORT) {
-        rc = report(all, n, out);
+        rc = ry_cli_validate_report(all, n, out, into);
     } else if (!rc && mode == LIST) {
         for (int k = 0; k < n; ++k)
             printf("%-20s %-4s %s\n", all[k].name, all[k].in_all ? "all" : "", all[k].summary);
+    } else if (!rc && into) {
+        fprintf(stderr, "ryushi: validate: --into goes with --report\n");
+        rc = 2;
     } else if (!rc && !every && !one) {
         fprintf(stderr, "ryushi: validate: no validation '%s' (ryushi validate --list)\n", what);
         rc = 2;
@@ -219,15 +134,19 @@ int ry_cli_validate(int argc, char **argv) {
             if (every ? all[k].in_all : &all[k] == one) {
                 /* the checks recorded for --report (the first line says which version) */
                 char rp[4300];
-                results_path(rp, sizeof rp, out, all[k].name);
+                ry_cli_results_path(rp, sizeof rp, out, all[k].name);
                 ry_atomic_file af = {0};
                 const int rec = ry_atomic_open(&af, rp, &err) == RY_OK;
                 if (rec)
                     fprintf(af.fp, "# ryushi validate %s%s\n", all[k].name,
                             quick ? " --quick" : "");
                 ry_cli_results(rec ? af.fp : NULL);
+                const double t0 = omp_get_wtime();
                 runner(all[k].name)->run(root, out, quick, &failures);
                 ry_cli_results(NULL);
+                if (rec)
+                    fprintf(af.fp, "# wall_s,%.1f\n# threads,%d\n", omp_get_wtime() - t0,
+                            omp_get_max_threads());
                 if (rec && ry_atomic_commit(&af, &err) != RY_OK) rec_failed = 1;
                 if (!rec || rec_failed) {
                     fprintf(stderr, "ryushi: validate: %s\n", err.msg);

@@ -43,6 +43,18 @@ const char *ry_manifest_text(ry_manifest *m, const char *key, const char *def) {
     return s;
 }
 
+const char *ry_manifest_item(ry_manifest *m, const char *key, int i) {
+    size_t n = 0;
+    ry_error e;
+    if (!ry_case_has(m->doc, key) || i < 0) return NULL;
+    if (ry_case_count(m->doc, key, &n, &e) != RY_OK)
+        return i == 0 ? ry_manifest_text(m, key, NULL) : NULL;
+    if ((size_t)i >= n) return NULL;
+    char path[256];
+    snprintf(path, sizeof path, "%s[%d]", key, i);
+    return ry_manifest_text(m, path, NULL);
+}
+
 static int by_order(const void *a, const void *b) {
     const ry_manifest *x = a, *y = b;
     return x->order != y->order ? (x->order < y->order ? -1 : 1) : strcmp(x->name, y->name);

@@ -106,9 +106,20 @@ expect 2 "no validation 'nope'" "$RY" validate nope
 # a quick validation records its checks; --report tabulates them with the manifests
 "$RY" validate channel --quick -o "$T/val" > "$T/val.log" 2>&1 && ok || bad "validate channel: $(cat "$T/val.log")"
 expect 0 "report in $T/val/validation_report.md" "$RY" validate --report -o "$T/val"
-grep -q '^| channel | quick | 4 | 4 | `ryushi validate channel --quick` |$' "$T/val/validation_report.md" &&
+grep -q '^| \[channel\](#channel) | quick | 4 | 4 | [0-9.]* s | `ryushi validate channel --quick` |$' "$T/val/validation_report.md" &&
+    grep -q '^| time | [0-9.]* s on 1 thread |$' "$T/val/validation_report.md" &&
     grep -q '^| 20 across: outflow against inflow rate (relative) | [0-9.e-]* | 0.03 | PASS |$' "$T/val/validation_report.md" &&
-    grep -q '^| dam_break | not run |' "$T/val/validation_report.md" && ok ||
+    grep -q '^| \[dam_break\](#dam_break) | not run |' "$T/val/validation_report.md" && ok ||
     bad "validation report: $(cat "$T/val/validation_report.md")"
+# --into FILE: the same tables between the report's markers in FILE, the rest of FILE kept
+printf 'before\n<!-- ryushi validate --report: begin -->\nold\n<!-- ryushi validate --report: end -->\nafter\n' > "$T/doc.md"
+expect 0 "report written into $T/doc.md" "$RY" validate --report -o "$T/val" --into "$T/doc.md"
+[ "$(head -n 2 "$T/doc.md" | tail -n 1)" = "<!-- ryushi validate --report: begin -->" ] &&
+    [ "$(tail -n 1 "$T/doc.md")" = "after" ] && ! grep -q '^old$' "$T/doc.md" &&
+    grep -q '^| 20 across: outflow against inflow rate (relative) | [0-9.e-]* | 0.03 | PASS |$' "$T/doc.md" &&
+    ok || bad "validate --into: $(cat "$T/doc.md")"
+echo "no markers" > "$T/plain.md"
+expect 2 "has no lines '<!-- ryushi validate --report: begin -->'" "$RY" validate --report -o "$T/val" --into "$T/plain.md"
+expect 2 "goes with --report" "$RY" validate channel --into "$T/doc.md"
 
 finish
