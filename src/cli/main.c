@@ -45,43 +45,70 @@ static void catch_signals(void) {
 }
 #endif
 
+/* The program's commands: how each is called and what it does (`ryushi help COMMAND`). */
+static const struct command_help {
+    const char *name, *synopsis, *text;
+} commands[] = {
+    {"run", "ryushi run CASE [-o DIR] [--threads N] [--set KEY=VALUE]... [--restart DIR]",
+     "run a case file; output (VTK .vtp/.pvd, series.csv, case_resolved.yaml,\n"
+     "checkpoints/) goes to DIR (default: the case's output.folder);\n"
+     "--restart continues from the newest sound checkpoint in DIR"},
+    {"checkpoint", "ryushi checkpoint FILE",
+     "check a checkpoint file (checksum) and list its records"},
+    {"info", "ryushi info CASE [--set KEY=VALUE]...",
+     "set the case up and report particles, memory and methods without running"},
+    {"validate", "ryushi validate [NAME | all] [--quick] [-o DIR] [--threads N]",
+     "run the validation cases against their references, with plots (default output\n"
+     "folder out/validate); --list names them, --report writes the report\n"
+     "(ryushi validate --help)"},
+    {"bench", "ryushi bench [sph | neighbors] [--quick] [--threads N]",
+     "sph: WCSPH dam-break throughput (particle-steps/s) at 4k to 250k particles;\n"
+     "neighbors: cell list against brute-force neighbour search, N = 1e3 .. 1e6"},
+    {"plot", "ryushi plot kernels -o FILE.png",
+     "the Lucy and Gaussian kernels and their derivatives (seed 000)"},
+    {"schemes", "ryushi schemes", "list the schemes a case can name (scheme.name)"},
+    {"probes", "ryushi probes", "list the measured quantities a case can name (measure)"},
+    {"help", "ryushi help [COMMAND]", "this text, or one command's (also ryushi COMMAND --help)"},
+};
+enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
+
+static const char *const set_help =
+    "KEY is a dotted path into the case file, e.g. --set time.end=0.3 or\n"
+    "--set bodies[0].hi=[0.25,0.5]. Exit codes: 0 success, 1 internal error,\n"
+    "2 bad input, 3 i/o error, 4 unstable run, 130 interrupted.\n"
+    "RY_MAX_PARTICLES=N in the environment limits the particles of a case (an error\n"
+    "beyond it, exit code 2).\n";
+
+/* A command's text, indented by 8 after each line break. */
+static void print_command(FILE *fp, const struct command_help *c, const char *indent) {
+    fprintf(fp, "  %s\n%s", c->synopsis, indent);
+    for (const char *t = c->text; *t; ++t) {
+        fputc(*t, fp);
+        if (*t == '\n') fputs(indent, fp);
+    }
+    fputc('\n', fp);
+}
+
 static void usage(FILE *fp) {
     fprintf(fp,
             "ryushi %s — meshfree particle methods (SPH, MPS) for fluids and soft solids\n"
-            "\n"
-            "usage:\n"
-            "  ryushi run CASE [-o DIR] [--threads N] [--set KEY=VALUE]... [--restart DIR]\n"
-            "        run a case file; output (VTK .vtp/.pvd, series.csv, case_resolved.yaml,\n"
-            "        checkpoints/) goes to DIR (default: the case's output.folder);\n"
-            "        --restart continues from the newest sound checkpoint in DIR\n"
-            "  ryushi checkpoint FILE\n"
-            "        check a checkpoint file (checksum) and list its records\n"
-            "  ryushi info CASE [--set KEY=VALUE]...\n"
-            "        set the case up and report particles, memory and methods without running\n"
-            "  ryushi bench neighbors [--quick] [--threads N]\n"
-            "        cell list against brute-force neighbour search, N = 1e3 .. 1e6\n"
-            "  ryushi validate "
-            "[dam_break|cavity|channel|cantilever|plate|buckling|mps|rheology|iisph|rt|air|\n"
-            "          eye|eye_positions|eye_clinical|embolization|embolization3d|\n"
-            "          embolization3d_all|"
-            "embolization3d_wide|wetting|all] [--quick]\n"
-            "        [-o DIR] [--threads N]\n"
-            "        run the validation cases against their references, with plots\n"
-            "        (default output folder out/validate)\n"
-            "  ryushi bench [sph] [--quick] [--threads N]\n"
-            "        WCSPH dam-break throughput (particle-steps/s) at 4k to 250k particles\n"
-            "  ryushi plot kernels -o FILE.png\n"
-            "        the Lucy and Gaussian kernels and their derivatives (seed 000)\n"
-            "  ryushi schemes | probes\n"
-            "        list the schemes and measured quantities a case can name\n"
-            "  ryushi --help | --version\n"
-            "\n"
-            "KEY is a dotted path into the case file, e.g. --set time.end=0.3 or\n"
-            "--set bodies[0].hi=[0.25,0.5]. Exit codes: 0 success, 1 internal error,\n"
-            "2 bad input, 3 i/o error, 4 unstable run, 130 interrupted.\n"
-            "RY_MAX_PARTICLES=N in the environment limits the particles of a case (an error\n"
-            "beyond it, exit code 2).\n",
+            "\nusage:\n",
             RY_VERSION);
+    for (int k = 0; k < NCOMMANDS; ++k) print_command(fp, &commands[k], "        ");
+    fprintf(fp, "  ryushi --help | --version\n\n%s", set_help);
+}
+
+/* `ryushi help COMMAND`: its synopsis and text; 2 for an unknown command. */
+static int command_help(const char *name) {
+    for (int k = 0; k < NCOMMANDS; ++k)
+        if (strcmp(commands[k].name, name) == 0) {
+            printf("usage:\n");
+            print_command(stdout, &commands[k], "  ");
+            if (strcmp(name, "run") == 0 || strcmp(name, "info") == 0) printf("\n%s", set_help);
+            return 0;
+        }
+    fprintf(stderr, "ryushi: no command '%s' (see ryushi --help)\n", name);
+    return 2;
 }
 
 static int fail(const ry_error *err) {
@@ -553,10 +580,14 @@ int main(int argc, char **argv) {
         ry_particles_set_limit((size_t)v);
     }
     const char *cmd = argv[1];
+    if (strcmp(cmd, "help") == 0 && argc >= 3) return command_help(argv[2]);
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
         usage(stdout);
         return 0;
     }
+    /* COMMAND --help, except validate's own */
+    for (int i = 2; i < argc && strcmp(cmd, "validate") != 0; ++i)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return command_help(cmd);
     if (strcmp(cmd, "--version") == 0) {
         printf("ryushi %s\n", RY_VERSION);
         return 0;

@@ -98,6 +98,11 @@ done
 # validate: its help, the list from validation/*.yaml (every manifest with a runner), an unknown
 # name
 expect 0 "usage: ryushi validate" "$RY" validate --help
+# each command's own help: `ryushi help COMMAND` and `ryushi COMMAND --help`
+expect 0 "ryushi run CASE \[-o DIR\]" "$RY" help run
+expect 0 "ryushi info CASE" "$RY" info --help
+expect 0 "ryushi bench \[sph | neighbors\]" "$RY" bench --help
+expect 2 "no command 'nope'" "$RY" help nope
 expect 0 "^dam_break  *all  *WCSPH dam break" "$RY" validate --list
 n=$("$RY" validate --list | wc -l)
 m=$(ls "$SRC"/validation/*.yaml | wc -l)
