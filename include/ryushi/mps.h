@@ -1,5 +1,5 @@
 /* ryushi — the Moving Particle Semi-implicit method (seed 003, SPEC section 3): the lattice
- * sums of its weight. docs/mps.md describes the equations and options. */
+ * sums of its weight. docs/reference/mps.md describes the equations and options. */
 #ifndef RYUSHI_MPS_H
 #define RYUSHI_MPS_H
 

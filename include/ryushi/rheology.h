@@ -1,6 +1,7 @@
 /* ryushi — rheology of a material: Newtonian, generalised Newtonian (power law, Carreau) and
- * visco-elastic (Oldroyd-B, Giesekus). Read from `materials[i].rheology` (docs/rheology.md); every
- * viscosity here is kinematic [m^2/s], as the material's `viscosity`.
+ * visco-elastic (Oldroyd-B, Giesekus). Read from `materials[i].rheology`
+ * (docs/reference/rheology.md); every viscosity here is kinematic [m^2/s], as the material's
+ * `viscosity`.
  *
  * Generalised Newtonian: nu = nu(gamma_dot), gamma_dot = sqrt(2 D:D), D the rate of strain.
  *   power law: nu = k gamma_dot^(n - 1), bounded to [viscosity_min, viscosity_max];

@@ -1,7 +1,7 @@
 /* ryushi — surface-tension models for particle methods (MPS and SPH): the continuum surface
  * force (Brackbill et al. 1992; in particle form after Nomura et al. 2001) with the curvature
  * from the colour function, and the inter-particle potential model of Kondo et al. (2007)
- * (seed 003, eq. 9-12). docs/mps.md gives the equations.
+ * (seed 003, eq. 9-12). docs/reference/mps.md gives the equations.
  *
  * Both act on fluid particles only and read a neighbour list that covers the model's radius
  * re (3.1 spacings by default); the acceleration of particle i is its force divided by the
@@ -48,13 +48,15 @@ typedef struct ry_surface_tension {
     double wall_ratio[RY_ST_WALL_GROUPS][256];
     const uint8_t *wall_group;
     /* Pairs of the neighbour list (by their place in sim->nl.j) that a thin wall separates
-     * and that take no part (NULL: none); MPS sets it each step (docs/mps.md, "Thin walls"). */
+     * and that take no part (NULL: none); MPS sets it each step (docs/reference/mps.md, "Thin
+     * walls"). */
     const uint8_t *cut;
     /* Potential model, thin walls: each particle's unit normal of its thin wall's sheet (3 per
      * particle, zero where it is not a thin wall or has no sheet), or NULL; MPS sets it each
      * step. A thin wall particle then attracts as a wall of thin_layers layers would: images of
      * it 1, ..., thin_layers - 1 spacings behind the sheet, away from the fluid particle, add
-     * their pair forces (ry_st_setup: 1, the wall as it stands; docs/mps.md, "Thin walls"). */
+     * their pair forces (ry_st_setup: 1, the wall as it stands; docs/reference/mps.md, "Thin
+     * walls"). */
     const double *thin_normal;
     int thin_layers;
     /* The scheme's own pairs at the current positions, where it keeps them (NULL: the models
@@ -131,7 +133,7 @@ double ry_st_potential_pair_sum(int dim, double l0, double re);
 /* C from 2 sigma l0^(d-1) = C sum (eq. 11; in 2D per unit depth). */
 double ry_st_potential_coefficient(int dim, double l0, double re, double sigma);
 
-/* Linear stability of the potential model's lattice (docs/mps.md, "The potential model's
+/* Linear stability of the potential model's lattice (docs/reference/mps.md, "The potential model's
  * lattice"): a plane wave u = U e^(i k.x) of the square (2D) or cubic (3D) lattice of spacing l0,
  * each site of mass rho l0^d, under the pair forces C f(r) within re, oscillates as
  * omega^2 = U.D(k).U / (m |U|^2), D(k) = sum_j K_j (1 - cos k.x_j), the pair stiffness

@@ -131,8 +131,8 @@ ry_oscillation_fit ry_drop_shape_fit(const ry_table *series, double T);
 double ry_rt_growth_rate(double rho1, double rho2, double h1, double h2, double g, double k,
                          double nu, double sigma, int free_top);
 
-/* Channel flows of non-Newtonian fluids (docs/rheology.md): walls at y = 0 and y = H, a body
- * force g along x; s the distance from the centreline, b = H/2, every viscosity kinematic.
+/* Channel flows of non-Newtonian fluids (docs/reference/rheology.md): walls at y = 0 and y = H, a
+ * body force g along x; s the distance from the centreline, b = H/2, every viscosity kinematic.
  * Steady power law (nu = k gamma_dot^(n-1)): u(s) = n/(n+1) (g/k)^(1/n) (b^(1+1/n) - s^(1+1/n)).
  * Steady flow of any model with solvent viscosity nu (ry_viscometric_poiseuille; nu is not read
  * by the generalised Newtonian models): the shear rate gd(s) solves nu(gd) gd = g s with nu(gd)

@@ -2,8 +2,8 @@
  * seed 003 Table 5 in 2D, l0 = 0.2 mm) run for 8 s (--quick: 4 s) with the interfacial tension
  * by the potential model (the case as it is) and by CSF: the droplet's length, width and aspect
  * ratio over time as the seed's figure 9 plots them, the injected and displaced volumes, and
- * the detachment time against the 2D form of Tate's law (docs/mps.md, "Inflow and outflow").
- * Table on stdout and in embolization.md, plots in embolization.png. */
+ * the detachment time against the 2D form of Tate's law (docs/reference/embolization.md, "Inflow
+ * and outflow"). Table on stdout and in embolization.md, plots in embolization.png. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>

@@ -107,12 +107,12 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
     return st;
 }
 
-/* The eye cases (docs/iisph.md, "Eye case"): the ports facing each other (cases/eye_sphere.yaml)
- * and the drainage at the posterior pole (cases/eye_posterior_drain.yaml), run in segments
- * with slice pictures; the posterior-drain case again at a third of its time step (implicit
- * viscosity: about 6e-4 s, set by the speeds; again at 2e-4 s). Checks: with the
- * drainage where the oil arrives last, the cavity keeps the injected oil (within 3 %), and the
- * filling and the contact agree at the two time steps. */
+/* The eye cases (docs/reference/iisph.md, "Eye case"): the ports facing each other
+ * (cases/eye_sphere.yaml) and the drainage at the posterior pole (cases/eye_posterior_drain.yaml),
+ * run in segments with slice pictures; the posterior-drain case again at a third of its time step
+ * (implicit viscosity: about 6e-4 s, set by the speeds; again at 2e-4 s). Checks: with the drainage
+ * where the oil arrives last, the cavity keeps the injected oil (within 3 %), and the filling and
+ * the contact agree at the two time steps. */
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures) {
     ry_error err = {0};
     const double tq[2] = {0.05, 0.1}, tf[3] = {0.3, 0.6, 1.0};

@@ -2,7 +2,7 @@
  * Hydrostatic tank; Martin & Moyce dam break beside WCSPH (front accuracy and cost per
  * simulated second); two fluids at rest (spurious speeds); square drop (Laplace pressure);
  * drops with free-surface tension (IISPH and WCSPH); Rayleigh-Taylor growth rate against linear
- * theory. Results in docs/validation.md and docs/iisph.md. */
+ * theory. Results in docs/validation.md and docs/reference/iisph.md. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <omp.h>
@@ -190,8 +190,8 @@ static void stacked(const char *root, const char *out, int quick, int *failures)
     }
 }
 
-/* Water and air (density ratio 1.2e-3, the air a light phase; docs/iisph.md, "A light phase")
- * in motion: the Martin & Moyce column under air against the experiment and against the
+/* Water and air (density ratio 1.2e-3, the air a light phase; docs/reference/iisph.md, "A light
+ * phase") in motion: the Martin & Moyce column under air against the experiment and against the
  * water alone, and a standing wave under air against linear theory. */
 static void air_water(const char *root, const char *out, int *failures) {
     ry_error err = {0};

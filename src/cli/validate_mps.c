@@ -184,8 +184,8 @@ static void validate_drops(const char *root, const char *out, int quick, int *fa
     }
     printf("MPS oscillating drops (seed 003: rho = 1e3, nu = 1e-6, sigma = 0.0728, l0 = 1e-4 m), "
            "mode 4 against Lamb\n");
-    /* The potential model's lattice (docs/mps.md): its transverse waves grow at the seed's
-     * radius of 3.1 l0, not at 4.1 l0 in 3D; the cubes run at both. */
+    /* The potential model's lattice (docs/reference/mps.md): its transverse waves grow at the
+     * seed's radius of 3.1 l0, not at 4.1 l0 in 3D; the cubes run at both. */
     for (int dim = 2; dim <= 3; ++dim)
         for (int q = 0; q < 2; ++q) {
             const double rr = q ? 4.1 : 3.1;

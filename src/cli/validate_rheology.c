@@ -1,5 +1,5 @@
 /* ryushi validate rheology: non-Newtonian MPS, WCSPH and IISPH against analytic channel flows
- * (docs/rheology.md): steady power-law, Carreau and Giesekus Poiseuille profiles, and the
+ * (docs/reference/rheology.md): steady power-law, Carreau and Giesekus Poiseuille profiles, and the
  * start-up of Poiseuille flow of an Oldroyd-B fluid, at 20 and 40 particles across (--quick:
  * 20). Tables on stdout and in rheology.md, plots in rheology.png. */
 #define _POSIX_C_SOURCE 200809L

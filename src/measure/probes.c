@@ -228,7 +228,7 @@ static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
  * is the union of the bodies that reach the nozzle (a particle above half a spacing under the
  * tip: a droplet whose top still touches the tip hangs from it, even where a void in a narrow
  * bore parts it from the liquid above, as in the coarse 3D tank's bore of 2 x 2 particles,
- * docs/mps.md). Values:
+ * docs/reference/mps.md). Values:
  * [0] length: the tip less the attached body's lowest point (its lowest particle less half a
  * spacing), 0 when nothing hangs below the tip; [1] width: the largest horizontal extent of the
  * attached body below the tip plus one spacing (0 if none); [2] length / width (NAN if no width);

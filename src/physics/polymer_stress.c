@@ -1,4 +1,4 @@
-/* Non-Newtonian materials in the SPH schemes (sph_rheology.h, docs/rheology.md). */
+/* Non-Newtonian materials in the SPH schemes (sph_rheology.h, docs/reference/rheology.md). */
 #include "physics/polymer_stress.h"
 
 #include <math.h>

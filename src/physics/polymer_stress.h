@@ -1,5 +1,5 @@
-/* Non-Newtonian materials in the SPH schemes (docs/rheology.md, "In the SPH schemes"): the
- * velocity gradient by the corrected kernel gradient, the viscosity of a generalised Newtonian
+/* Non-Newtonian materials in the SPH schemes (docs/reference/rheology.md, "In the SPH schemes"):
+ * the velocity gradient by the corrected kernel gradient, the viscosity of a generalised Newtonian
  * material (power law, Carreau) from its shear rate, and the polymer stress of a visco-elastic
  * material (Oldroyd-B, Giesekus) with its divergence. The scheme's viscous term reads the
  * per-particle viscosity; the stress divergence is an acceleration the scheme adds to its own. */

@@ -1,4 +1,4 @@
-/* Rheology models of a material (include/ryushi/rheology.h, docs/rheology.md). */
+/* Rheology models of a material (include/ryushi/rheology.h, docs/reference/rheology.md). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

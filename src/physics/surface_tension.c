@@ -135,7 +135,7 @@ double ry_st_potential_lattice_growth(int dim, double l0, double re, double sigm
  * the jump sigma kappa over the top layer and the layers under it (a discrete delta function;
  * the top layer carries g_top/S, 81 % in 2D at re = 3.1 l0). Its pressure is fixed (p = 0) in
  * MPS, and the pressure equation turns only part of the force on it into pressure inside
- * (docs/mps.md, known limits). */
+ * (docs/reference/mps.md, known limits). */
 static double csf_delta_sum(int dim, double l0, double re, double *g_top) {
     const int K = lattice_extent(l0, re);
     double S = 0;
@@ -216,9 +216,9 @@ ry_status ry_st_read(ry_surface_tension *st, ry_case *c, int dim, double l0, dou
     if (model == RY_ST_CSF) {
         static const char *const forms[] = {"force", "pressure", NULL};
         RY_TRY(ry_case_choice(c, "surface_tension.csf_form", "pressure", forms, &pressure, err));
-        /* The curvature that suits each form (docs/mps.md): the surface divergence for the
-         * pressure form; for the force form the full divergence, whose high reading makes up for
-         * the part of the force the pressure equation does not take up. */
+        /* The curvature that suits each form (docs/reference/mps.md): the surface divergence for
+         * the pressure form; for the force form the full divergence, whose high reading makes up
+         * for the part of the force the pressure equation does not take up. */
         RY_TRY(ry_case_choice(c, "surface_tension.curvature", pressure ? "surface" : "divergence",
                               ry_st_curvature_names, &curv, err));
         char where[256];
@@ -246,7 +246,7 @@ ry_status ry_st_read_sph(ry_surface_tension *st, ry_case *c, int dim, double dx,
     /* Two layers carry the jump: on a flat lattice the top layer has 0.77 of the full kernel
      * sum, the one under it 0.99 (Wendland C2, h = 1.4 dx). With the top layer alone (0.9 to
      * 0.97) an IISPH drop at rest grew a star of spikes within 5 ms: the layer under it, short
-     * of neighbours, took a pressure under the jump (docs/iisph.md). */
+     * of neighbours, took a pressure under the jump (docs/reference/iisph.md). */
     double b = 0.995, r = pf ? 0.85 : 0.0, ce = 0.2;
     *beta = b;
     if (pf) RY_TRY(ry_case_double(c, "surface_tension.surface_threshold", &b, 0.5, 1.0, beta, err));
@@ -395,7 +395,7 @@ static int contact_frame(const ry_surface_tension *st, const ry_sim *sim, size_t
  * the walls beyond it lie under the gas, for theta > 90 degrees in the wedge of gas under the
  * drop. Counted as liquid they tilt the normals of the surface above them towards the wall's
  * own, a false convex curvature at the contact line: a 150-degree drop spread to 136 degrees
- * (docs/mps.md, "Wetting"). */
+ * (docs/reference/surface_tension.md, "Wetting"). */
 static void wetted_colour(const ry_surface_tension *st, const ry_sim *sim, size_t i, double *g) {
     const ry_particles *ps = &sim->ps;
     const int dim = sim->dim;
@@ -451,8 +451,8 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
     double *gs = kappa + 5 * n;  /* 3 per particle: the colour gradient g */
     const double gmin = 0.1 * st->g_top;
     const double re2 = st->re * st->re;
-    /* In 3D the rule threw particles off a 90-degree drop (docs/mps.md): measured and used in
-     * 2D only. */
+    /* In 3D the rule threw particles off a 90-degree drop (docs/reference/mps.md): measured and
+     * used in 2D only. */
     const int wet = !isnan(st->contact_angle) && dim == 2;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {

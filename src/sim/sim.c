@@ -226,7 +226,7 @@ static ry_status read_scheme(ry_sim *sim, ry_case *c, ry_error *err) {
     free(names);
     RY_TRY(st);
     sim->scheme = all[which];
-    /* Non-Newtonian materials need a scheme that carries them (docs/rheology.md). */
+    /* Non-Newtonian materials need a scheme that carries them (docs/reference/rheology.md). */
     const int rheology = (sim->scheme->caps & RY_SCHEME_RHEOLOGY) != 0;
     for (int m = 0; m < sim->nmat && !rheology; ++m) {
         if (sim->mat[m].rheo.model == RY_RHEO_NEWTONIAN) continue;

@@ -60,7 +60,7 @@ case_ inlet_flow_rate_and_velocity 2 ":8: key 'open_boundaries[0].flow_rate': an
 case_ outlet_pressure_and_flow_rate 2 ":8: key 'open_boundaries[0].pressure': an outlet takes 'pressure', or 'flow_rate' or 'velocity' (a rate outlet), not both"
 case_ wcsph_rate_outlet 2 ":7: key 'open_boundaries[0].type': scheme wcsph takes no rate outlets (flow_rate or velocity); use an outlet at a pressure, or scheme iisph"
 case_ iisph_light_phase_surface_tension 2 ":7: key 'surface_tension.model': not available with a light phase (material 'air' is lighter than 0.05 of the heaviest, and scheme.light_phase is boundary); set scheme.light_phase: coupled"
-case_ iisph_light_phase_pocket 2 ":12: key 'scheme.light_phase': 32 particles of the light material 'air' around (0.0425, 0.0275, 0) lie wholly inside the heavy fluid, a pocket the light phase does not hold (the heavy phase fills it; docs/iisph.md, \"A light phase\")"
+case_ iisph_light_phase_pocket 2 ":12: key 'scheme.light_phase': 32 particles of the light material 'air' around (0.0425, 0.0275, 0) lie wholly inside the heavy fluid, a pocket the light phase does not hold (the heavy phase fills it; docs/reference/iisph.md, \"A light phase\")"
 case_ mps_rate_outlet 2 ":7: key 'open_boundaries[0].type': scheme mps takes no rate outlets (flow_rate or velocity): its outlets are sinks at pressure 0"
 case_ inlet_flow_rate_direction 2 ":8: key 'open_boundaries[0].direction': the flow must be along one axis (a unit vector such as [0, 0, -1])"
 case_ rheology_no_bound 2 ":6: key 'materials[0].rheology.viscosity_max': required key is missing"

@@ -106,8 +106,8 @@ static void test_martin_moyce(void **state) {
  * ratio 0.97, viscosity ratio 1000, interfacial tension 0.04 N/m): from t = 0.5 s the kinetic
  * energy stays below 1e-3 of M g H and the largest speed in the band +-2 cm about the
  * interface below 0.05 m/s (measured 0.010 m/s). With air above the water (density ratio
- * 1.2e-3, a light phase: docs/iisph.md, "A light phase") the kinetic energy stays below 1e-3
- * M g H, the water below the interface (y in [0.06, 0.1] m) slower than 0.2 m/s, and the air
+ * 1.2e-3, a light phase: docs/reference/iisph.md, "A light phase") the kinetic energy stays below
+ * 1e-3 M g H, the water below the interface (y in [0.06, 0.1] m) slower than 0.2 m/s, and the air
  * slower than 0.3 m/s at 1 s (measured 0.103 m/s, rms 0.040; coupled, scheme.light_phase:
  * coupled, 0.36 m/s, rms 0.16, and 0.60 m/s at 0.5 s). */
 static void test_stacked(void **state) {
@@ -141,8 +141,8 @@ static void test_stacked(void **state) {
     }
 }
 
-/* Water and air in motion (density ratio 1.2e-3, the air a light phase; docs/iisph.md, "A light
- * phase"). The Martin & Moyce column under air up to the tank's rim
+/* Water and air in motion (density ratio 1.2e-3, the air a light phase; docs/reference/iisph.md, "A
+ * light phase"). The Martin & Moyce column under air up to the tank's rim
  * (cases/dam_break_mm_iisph_air.yaml, a/20, to 0.18 s): the water's front against the
  * experiment as test_martin_moyce asks (measured: shift 0.225, RMS after it 0.033, the water
  * alone 0.230 and 0.033), mass exact, no particle outside, the air slower than 3 m/s at the end
@@ -189,8 +189,8 @@ static void test_air_water(void **state) {
  * solver tolerance 1e-6), to 0.8 s: the pressure inside (r < R/2) minus outside (r > 1.5 R) is
  * sigma / R within 5 % (measured +1.6 % at 0.8 s, -0.1 % at 0.4 s), R = 0.4/sqrt(pi); and the
  * drop comes to rest: from 0.6 s its largest speed stays below 0.03 m/s (measured 0.010). With
- * the curvature as read, before its average over the interface (docs/iisph.md), the parasitic
- * currents kept it at 0.092 m/s and the jump read +4.5 %. */
+ * the curvature as read, before its average over the interface (docs/reference/iisph.md), the
+ * parasitic currents kept it at 0.092 m/s and the jump read +4.5 %. */
 static void test_square_drop(void **state) {
     (void)state;
     const char *sets[] = {"time.end=0.8", "output.vtk=false"};
@@ -213,8 +213,8 @@ static void test_square_drop(void **state) {
 /* Free-surface tension (CSF in pressure form): the circular drop of cases/iisph_drop_rest_2d.yaml
  * (R = 2 mm, 20 spacings, sigma = 0.0728 N/m, 10 ms) keeps a pressure inside within 6 % of the
  * Laplace jump sigma / R over its second half (measured +3.2 %; +16.1 % before the liquid
- * beneath the surface counted its pressures from the drop's mean jump: docs/iisph.md) and its
- * spurious speeds below 0.05 m/s (measured 0.016). */
+ * beneath the surface counted its pressures from the drop's mean jump: docs/reference/iisph.md) and
+ * its spurious speeds below 0.05 m/s (measured 0.016). */
 static void test_free_drop_rest(void **state) {
     (void)state;
     const char *sets[] = {"time.end=0.01"};
@@ -223,7 +223,7 @@ static void test_free_drop_rest(void **state) {
 
 /* The oscillating square of cases/iisph_droplet_square.yaml (40 x 40, CSF in pressure form, 15
  * ms): period within 10 % of Lamb's mode 4, T = 2 pi / sqrt(60 sigma / (rho R^3)),
- * R = a / sqrt(pi) (measured +4.0 %, half period +9.9 %: docs/iisph.md). */
+ * R = a / sqrt(pi) (measured +4.0 %, half period +9.9 %: docs/reference/iisph.md). */
 static void test_free_square(void **state) {
     (void)state;
     free_square_period("cases/iisph_droplet_square.yaml", "free_square", 0.10);
@@ -238,7 +238,7 @@ static void test_free_square(void **state) {
  * without tension, and 12.16 1/s for the case (the free-surface dispersion relation solved
  * independently). The growth rate of the mode, a(t) = A e^(nt) + B e^(-nt) fitted up to
  * a = 0.1 lambda, within 15 % of theory (measured -12.5 %; -9.1 % at 100 per wavelength:
- * docs/iisph.md); the fit follows the record within 5 % RMS, over at least 0.15 s. */
+ * docs/reference/iisph.md); the fit follows the record within 5 % RMS, over at least 0.15 s. */
 static void test_rayleigh_taylor(void **state) {
     (void)state;
     const char *sets[] = {"spacing=0.002", "bodies[0].top_amplitude=0.002", "output.vtk=false"};

@@ -72,11 +72,11 @@ static void test_hydrostatic_column(void **state) {
     ry_table_free(&s);
 }
 
-/* Deflated conjugate gradients for the pressure (scheme.solver.deflation; docs/mps.md, "Linear
- * solver"): the hydrostatic column (800 fluid particles) for 20 steps from rest with aggregates
- * of 4 x 4 spacings and without. Both solves stop at the same relative residual (1e-8), so the
- * pressures agree to about that after 20 steps of particle motion: within 1e-8 of the largest
- * (measured 2.6e-11), in under half the iterations (measured 384 against 1,281: 0.30). The
+/* Deflated conjugate gradients for the pressure (scheme.solver.deflation; docs/reference/mps.md,
+ * "Linear solver"): the hydrostatic column (800 fluid particles) for 20 steps from rest with
+ * aggregates of 4 x 4 spacings and without. Both solves stop at the same relative residual (1e-8),
+ * so the pressures agree to about that after 20 steps of particle motion: within 1e-8 of the
+ * largest (measured 2.6e-11), in under half the iterations (measured 384 against 1,281: 0.30). The
  * deflated run gives the same bits on 1 and 2 threads. */
 static void deflation_run(const char *sub, const char *defl, int threads, ry_sim *sim) {
     const char *sets[] = {"time.end=0.02", "time.dt_max=0.001", "output.vtk=false", defl};
@@ -124,7 +124,7 @@ static void test_deflation(void **state) {
 }
 
 /* The hydrostatic column in a tank whose walls are one layer thick, with nothing behind them
- * (docs/mps.md, "Thin walls"), 3 s, the pressure averaged over 1-3 s. Such wall particles
+ * (docs/reference/mps.md, "Thin walls"), 3 s, the pressure averaged over 1-3 s. Such wall particles
  * read a number density of about half n0; as free surface (p = 0) they cannot hold the
  * water, which runs out between them: the pressure at depth falls short of rho g h by 16-31 %
  * (the level sinks by 3 cm in 3 s). With bodies[k].thin they are never free surface (and stay
@@ -204,7 +204,7 @@ static void test_thin_partition(void **state) {
     assert_true(partition_worst("unknown", "left", 0.4, 35) > 0.10);
 }
 
-/* Pairs across a thin wall are cut (docs/mps.md, "Thin walls"): two cavities parted by a
+/* Pairs across a thin wall are cut (docs/reference/mps.md, "Thin walls"): two cavities parted by a
  * horizontal wall one particle thick (cases/mps_thin_wall_cavities.yaml, l0 = 0.1 mm), one
  * step from rest. The pairs within the interaction radius (3.1 l0) that cross the wall's line
  * y = 0.55 mm, counted here from the positions, are the pairs the step cut: every crossing
@@ -376,7 +376,7 @@ static void test_drop_rest_csf_3d(void **state) {
 /* Wetting (CSF with a contact angle): the sessile drop of cases/mps_sessile_drop.yaml (a block
  * of 2 mm x 1 mm on a free-slip floor, no gravity) settles at the prescribed angle: the mean
  * of the contact_angle probe over 40-60 ms (tolerance: validation/wetting.yaml; measured: see
- * docs/mps.md). */
+ * docs/reference/mps.md). */
 static void sessile(double theta) {
     char set[64];
     snprintf(set, sizeof set, "surface_tension.contact_angle=%g", theta);
@@ -418,7 +418,7 @@ static void test_sessile_150(void **state) {
  * at Young's angle cos theta_ab = (cos theta_b - cos theta_a) / 2 (validation/wetting.yaml): 60
  * degrees from theta_a = 90, theta_b = 0 (measured 59.3), 90 from theta_a = theta_b = 90 (measured
  * 89.4); the mean of contact_angle_second over 40-60 ms. Without the per-liquid keys both read
- * 90. Angles above 90 overshoot (docs/mps.md, "Wetting with two liquids"). */
+ * 90. Angles above 90 overshoot (docs/reference/surface_tension.md, "Wetting with two liquids"). */
 static void two_liquid_sessile(double theta_a, double theta_b, double expect) {
     char sa[64], sb[64], sub[48];
     snprintf(sa, sizeof sa, "materials[0].contact_angle=%g", theta_a);
@@ -509,7 +509,7 @@ static void test_catheter_inflow(void **state) {
     ry_table_free(&s);
 }
 
-/* `scheme.viscosity: mixed` (docs/mps.md, "Mixed viscosity"): the particles whose viscous
+/* `scheme.viscosity: mixed` (docs/reference/mps.md, "Mixed viscosity"): the particles whose viscous
  * diagonal dt sum c nu w is at most 0.25 take the explicit step, the rest the implicit solve.
  * (1) The hydrostatic column (water, l0 = 1 cm: every particle explicit) for 20 steps is the
  * explicit scheme's: positions within 1e-12 m, pressures within 1e-8 of the largest (measured:
@@ -570,12 +570,12 @@ static void test_viscosity_mixed(void **state) {
     for (int t = 0; t < 3; ++t) assert_true(vol[0][t] == vol[1][t]);
 }
 
-/* A contact line that slides (scheme.contact_line_slip, docs/mps.md "Walls"): the coarse 2D
- * embolization tank for 1 s. The catheter's walls hold the embolic liquid with its own viscosity;
- * without slip at the line where it meets the water on the catheter's outside, the line stays
- * where the growing bulb first touched the wall and the liquid rises along the catheter's outside
- * (measured: 10 particles above the tip, outside the bore, up to 0.38 mm above it). With the
- * slip the bulb stays under the tip (measured 0). Bounds: at most 2 with the slip, at least 5
+/* A contact line that slides (scheme.contact_line_slip, docs/reference/mps.md "Walls"): the coarse
+ * 2D embolization tank for 1 s. The catheter's walls hold the embolic liquid with its own
+ * viscosity; without slip at the line where it meets the water on the catheter's outside, the line
+ * stays where the growing bulb first touched the wall and the liquid rises along the catheter's
+ * outside (measured: 10 particles above the tip, outside the bore, up to 0.38 mm above it). With
+ * the slip the bulb stays under the tip (measured 0). Bounds: at most 2 with the slip, at least 5
  * without. */
 static int climbed(const char *slip) {
     char set[64], sub[64];
@@ -617,7 +617,7 @@ static void test_contact_line_slip(void **state) {
  * it), and the level stays at the face: the highest water particle away from the catheter is
  * within a spacing below it at the end (without the outlets the level would rise by 1.5 mm
  * over the run). The pressure is no measure here: the potential model's cohesive pressure
- * swings by tens of pascals (docs/mps.md). */
+ * swings by tens of pascals (docs/reference/mps.md). */
 static void test_overflow(void **state) {
     (void)state;
     const char *sets[] = {"open_boundaries[0].velocity=[0.0, -0.05]",
@@ -652,7 +652,7 @@ static void test_overflow(void **state) {
  * first maximum of width within 15 % of half the period of a cylinder of liquid in another,
  * omega^2 = n (n^2 - 1) sigma / ((rho_in + rho_out) R^3), n = 4 (T = 5.10 ms; measured +6 %),
  * and its mean width over 8-15 ms within 3 % of the circle's diameter (measured -2 %). With the
- * liquids miscible (interfacial_sigma 0) the square keeps its width (docs/mps.md). */
+ * liquids miscible (interfacial_sigma 0) the square keeps its width (docs/reference/mps.md). */
 static void test_two_liquid_drop(void **state) {
     (void)state;
     ry_table s;

@@ -1,4 +1,4 @@
-/* Non-Newtonian MPS, WCSPH and IISPH against analytic channel flows (docs/rheology.md):
+/* Non-Newtonian MPS, WCSPH and IISPH against analytic channel flows (docs/reference/rheology.md):
  * power-law and Carreau Poiseuille profiles at steady state, and the start-up of Poiseuille flow
  * of an Oldroyd-B fluid with its velocity overshoot. The full-resolution runs are `ryushi
  * validate rheology`. */

@@ -324,7 +324,7 @@ static void test_cavity_re100_ghia(void **state) {
     ry_table_free(&gv);
 }
 
-/* Free-surface tension (CSF in pressure form, docs/wcsph.md): the circle of
+/* Free-surface tension (CSF in pressure form, docs/reference/wcsph.md): the circle of
  * cases/wcsph_drop_rest_2d.yaml (R = 2 mm, sigma = 0.0728 N/m, c0 = 3 m/s, 20 ms) keeps a
  * pressure inside within 20 % of sigma / R over its second half (measured +14.3 %) and its
  * speeds below 0.15 m/s (measured 0.092); the oscillating square of

@@ -1,7 +1,7 @@
 /* The potential model's images of thin walls (ry_surface_tension.thin_normal, thin_layers;
- * docs/mps.md, "Thin walls"): a block of fluid on a wall of one layer whose images stand one and
- * two spacings behind it takes from the wall the same forces as on a wall of three layers, to
- * rounding (1e-12 of the largest). Without the images the wall holds the layer next to it less:
+ * docs/reference/mps.md, "Thin walls"): a block of fluid on a wall of one layer whose images stand
+ * one and two spacings behind it takes from the wall the same forces as on a wall of three layers,
+ * to rounding (1e-12 of the largest). Without the images the wall holds the layer next to it less:
  * at 90 degrees the fluid above pulls the middle of that layer off the wall at 2,097 m/s^2,
  * against 1,363 with the images (the test asks for a difference of more than 10 %). */
 #define _POSIX_C_SOURCE 200809L

@@ -1,4 +1,4 @@
-/* Implicit incompressible SPH (seed 004, SPEC section 4; docs/iisph.md).
+/* Implicit incompressible SPH (seed 004, SPEC section 4; docs/reference/iisph.md).
  *
  * Ihmsen, Cornelis, Solenthaler, Horvath & Teschner (2014), "Implicit incompressible SPH",
  * IEEE TVCG 20: 426, written in the number-density form of Hu & Adams (2006), J. Comput. Phys.
@@ -26,7 +26,7 @@
  *                  min_iterations)
  *  light phase     a material lighter than 0.05 of the heaviest (air) solved with the heavy
  *                  particles as moving walls, and left out of the heavy phase's sums
- *                  (scheme.light_phase: boundary; docs/iisph.md, "A light phase")
+ *                  (scheme.light_phase: boundary; docs/reference/iisph.md, "A light phase")
  *  time            symplectic Euler: v = v* + dt a^p, x += dt v;
  *                  dt = min(CFL h / |v|max, 0.25 sqrt(h / |a|max), 0.045 h^2 / nu_max,
  *                  surface-tension limit, dt_max).

@@ -1,4 +1,4 @@
-/* Implicit incompressible SPH scheme (registered as "iisph"; docs/iisph.md). */
+/* Implicit incompressible SPH scheme (registered as "iisph"; docs/reference/iisph.md). */
 #ifndef RYUSHI_SPH_IISPH_H
 #define RYUSHI_SPH_IISPH_H
 

@@ -71,13 +71,13 @@ typedef struct iisph {
     double cvisc;     /* its explicit time-step factor: dt <= cvisc h^2 / nu */
     int ghost;        /* scheme.wall_velocity: ghost (Adami et al. 2012) */
     ry_sph_rheo rheo; /* non-Newtonian materials */
-    /* Free-surface tension (the surface_tension section; docs/iisph.md): */
+    /* Free-surface tension (the surface_tension section; docs/reference/iisph.md): */
     ry_surface_tension st;
     double st_beta;        /* CSF pressure form: surface particles have delta < st_beta delta0 */
     ry_st_work stw;        /* the Laplace jump P_i of the surface particles (0 elsewhere) and their
                               tag (1) */
     double coll_r, coll_e; /* artificial repulsion: distance [m], restitution */
-    /* scheme.viscosity: implicit (Morris form, backward Euler; docs/iisph.md) */
+    /* scheme.viscosity: implicit (Morris form, backward Euler; docs/reference/iisph.md) */
     int implicit;
     double vtol;
     ry_csr A;
@@ -90,8 +90,8 @@ typedef struct iisph {
     long viters_last, viters_total;
     wall_map wm;
     grad_list gl;
-    /* A light phase as a moving boundary (scheme.light_phase: boundary; docs/iisph.md, "A light
-     * phase"): */
+    /* A light phase as a moving boundary (scheme.light_phase: boundary; docs/reference/iisph.md, "A
+     * light phase"): */
     int light_on;       /* some fluid material is light */
     uint8_t *light_mat; /* per material: light (density below RY_IISPH_LIGHT of the heaviest) */
     uint8_t *lt;        /* per particle: a mobile particle of a light material */
@@ -107,8 +107,8 @@ typedef struct iisph {
  * buffers; the pressure is solved for fluid only (outlet buffers keep the outlet pressure). */
 static const int MOBILE[RY_KIND_COUNT] = {[RY_KIND_FLUID] = 1, [RY_KIND_OUTLET] = 1};
 
-/* The pair (i, j) with a light phase as a moving boundary (docs/iisph.md, "A light phase").
- * A heavy row i leaves its light neighbours j out (pair_skip: not in its pair lists): its
+/* The pair (i, j) with a light phase as a moving boundary (docs/reference/iisph.md, "A light
+ * phase"). A heavy row i leaves its light neighbours j out (pair_skip: not in its pair lists): its
  * interface is a free surface. A light row i counts its heavy neighbours j as walls that move:
  * in its number density and its viscosity (no slip, with v_j), in its continuity with v*_j
  * and the pressure displacement D_j of the heavy solve's current iterate, and in its force

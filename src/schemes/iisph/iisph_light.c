@@ -1,7 +1,7 @@
-/* The light phase of IISPH as a moving boundary (scheme.light_phase: boundary; docs/iisph.md,
- * "A light phase"): which materials are light (lighter than RY_IISPH_LIGHT of the heaviest),
- * the light phase's tolerance, the couplings it does not define and the pockets of light fluid
- * that the heavy fluid encloses, refused at set-up. */
+/* The light phase of IISPH as a moving boundary (scheme.light_phase: boundary;
+ * docs/reference/iisph.md, "A light phase"): which materials are light (lighter than RY_IISPH_LIGHT
+ * of the heaviest), the light phase's tolerance, the couplings it does not define and the pockets
+ * of light fluid that the heavy fluid encloses, refused at set-up. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,8 +10,8 @@
 #include "schemes/iisph/iisph_internal.h"
 
 /* A pocket of the light phase that the heavy fluid encloses (a bubble) is not held: the heavy
- * phase does not feel the light one's pressure and fills it (docs/iisph.md, "A light phase").
- * The set-up refuses one. The light particles are joined into bodies (neighbours within
+ * phase does not feel the light one's pressure and fills it (docs/reference/iisph.md, "A light
+ * phase"). The set-up refuses one. The light particles are joined into bodies (neighbours within
  * 1.5 dx); a body is a pocket when none of its particles lacks lattice neighbours within
  * 1.5 dx (a free surface: fewer than 3/4 of the full lattice's 8 in 2D, 18 in 3D) and none has a
  * wall neighbour. *size receives the size of the first pocket found (0: none), *where one of
@@ -92,8 +92,8 @@ static ry_status light_pocket(const ry_sim *sim, const iisph *s, size_t *size_ou
  * heaviest is light, and the light and heavy phases are solved as two incompressible fluids,
  * each with the other as its boundary: the heavy phase does not see the light one (its
  * interface is a free surface, p >= 0), the light phase sees the heavy particles as moving
- * walls with their velocity and its own pressure extrapolated onto them (docs/iisph.md, "A
- * light phase"). The couplings this does not define are refused. */
+ * walls with their velocity and its own pressure extrapolated onto them (docs/reference/iisph.md,
+ * "A light phase"). The couplings this does not define are refused. */
 ry_status iisph_light_phase_init(ry_sim *sim, iisph *s, ry_case *c, ry_error *err) {
     static const char *const modes[] = {"coupled", "boundary", NULL};
     int boundary;
@@ -113,7 +113,7 @@ ry_status iisph_light_phase_init(ry_sim *sim, iisph *s, ry_case *c, ry_error *er
             s->light_on |= s->light_mat[ps->material[i]];
     /* The light phase's error does not reach the heavy phase: a looser tolerance (10 times the
      * heavy one by default) took the dam break under air from 15 to 5 iterations per step with
-     * the same front and the same air speeds (docs/iisph.md). */
+     * the same front and the same air speeds (docs/reference/iisph.md). */
     double ltol = fmin(10.0 * s->tol, 0.1);
     RY_TRY(ry_case_double(c, "scheme.light_tolerance", &ltol, 1e-7, 0.1, &s->light_tol, err));
     if (!s->light_on) return RY_OK;
@@ -130,7 +130,7 @@ ry_status iisph_light_phase_init(ry_sim *sim, iisph *s, ry_case *c, ry_error *er
         RY_CHECK(err, pocket == 0, RY_ERR_INPUT,
                  "%s: key 'scheme.light_phase': %zu particles of the light material '%s' around "
                  "(%g, %g, %g) lie wholly inside the heavy fluid, a pocket the light phase does "
-                 "not hold (the heavy phase fills it; docs/iisph.md, \"A light phase\")",
+                 "not hold (the heavy phase fills it; docs/reference/iisph.md, \"A light phase\")",
                  ry_case_where(c, "scheme.light_phase", where, sizeof where), pocket,
                  sim->mat[ps->material[at]].name, ps->f[RY_F_X][at], ps->f[RY_F_Y][at],
                  sim->dim == 3 ? ps->f[RY_F_Z][at] : 0.0);

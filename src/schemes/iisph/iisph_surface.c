@@ -1,5 +1,5 @@
-/* Free-surface tension in IISPH (the surface_tension section; docs/iisph.md): the potential
- * model and CSF in force form as accelerations, CSF in pressure form as the Laplace jump
+/* Free-surface tension in IISPH (the surface_tension section; docs/reference/iisph.md): the
+ * potential model and CSF in force form as accelerations, CSF in pressure form as the Laplace jump
  * P_i = sigma kappa_i on the surface particles (a Dirichlet value of the pressure solve) with
  * the known part of their pressure force counted from a reference pressure. */
 #include <string.h>
@@ -7,14 +7,14 @@
 #include "schemes/iisph/iisph_internal.h"
 
 /* Free-surface tension (the surface_tension section). The potential model and CSF in force form
- * add their accelerations. CSF in pressure form (docs/iisph.md): each surface particle (number
- * density below st_beta delta0) takes the Laplace jump P_i = sigma kappa_i as its pressure (a
- * Dirichlet value, as in MPS), and its pressure force counts pressures from P_i,
- *   a^p_i = -(1/m_i) sum_j ((p_i - P_i) / delta_i^2 + (p_j - P_i) / delta_j^2) grad_i W_ij,
- * so a surface particle at P_i feels only the pressure differences inside the liquid (the
- * symmetric form would push it out with P_i against the empty side). The part with P_i is
- * known before the solve and goes into the predicted velocity. The other particles ask for no
- * expansion (their predicted number density is taken as at least delta0). */
+ * add their accelerations. CSF in pressure form (docs/reference/iisph.md): each surface particle
+ * (number density below st_beta delta0) takes the Laplace jump P_i = sigma kappa_i as its pressure
+ * (a Dirichlet value, as in MPS), and its pressure force counts pressures from P_i, a^p_i =
+ * -(1/m_i) sum_j ((p_i - P_i) / delta_i^2 + (p_j - P_i) / delta_j^2) grad_i W_ij, so a surface
+ * particle at P_i feels only the pressure differences inside the liquid (the symmetric form would
+ * push it out with P_i against the empty side). The part with P_i is known before the solve and
+ * goes into the predicted velocity. The other particles ask for no expansion (their predicted
+ * number density is taken as at least delta0). */
 ry_status iisph_surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;

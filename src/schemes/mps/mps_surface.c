@@ -1,4 +1,4 @@
-/* Surface tension and two liquids in MPS (docs/mps.md; the forces in
+/* Surface tension and two liquids in MPS (docs/reference/mps.md; the forces in
  * src/physics/surface_tension.c): the keys of wetting (the contact angles of the potential
  * model, per liquid and per wall body, by the Dupre relation; CSF's angle at the contact line)
  * and of the interface of two liquids (surface_tension.interfacial_sigma); the CSF interfacial
@@ -17,10 +17,11 @@ static double wall_ratio_of(double theta) {
     return 0.5 * (1.0 + cos(theta * RY_PI / 180.0));
 }
 
-/* Wetting of one wall body (docs/mps.md, "Wetting with two liquids"), potential model:
- * bodies[k].contact_angle, a number for every liquid or a mapping from material names to
- * angles (liquids not named keep their angle on the other walls). Bodies with the same angles
- * share a group of walls (M->body_group); each other set of angles has a group of its own. */
+/* Wetting of one wall body (docs/reference/surface_tension.md, "Wetting with two liquids"),
+ * potential model: bodies[k].contact_angle, a number for every liquid or a mapping from material
+ * names to angles (liquids not named keep their angle on the other walls). Bodies with the same
+ * angles share a group of walls (M->body_group); each other set of angles has a group of its own.
+ */
 static ry_status body_angles(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
     char where[256], key[160];
     int groups = 1;
@@ -71,8 +72,8 @@ static ry_status body_angles(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
     return RY_OK;
 }
 
-/* Wetting (docs/mps.md): surface_tension.contact_angle [degrees]. The potential model takes it
- * as its fluid-wall coefficient, CSF as the normal at the contact line. With the potential
+/* Wetting (docs/reference/mps.md): surface_tension.contact_angle [degrees]. The potential model
+ * takes it as its fluid-wall coefficient, CSF as the normal at the contact line. With the potential
  * model, materials[k].contact_angle sets the angle of liquid k alone (the others keep
  * surface_tension.contact_angle, or no attraction). */
 ry_status mps_contact_angle(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
@@ -104,7 +105,7 @@ ry_status mps_contact_angle(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
  * relation the pairs of two different liquids do the work W_ab = 2 sigma - sigma_ab, the
  * coefficient C (1 - sigma_ab / (2 sigma)). CSF: the colour field of the first two materials
  * (colour 1 for the second), its curvature and the force sigma_ab kappa n / rho_bar, on the
- * case's SPH kernel (sph/multiphase.h; docs/mps.md, "Two liquids"). */
+ * case's SPH kernel (sph/multiphase.h; docs/reference/surface_tension.md, "Two liquids"). */
 ry_status mps_interfacial(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
     char where[256];
     const char *key = "surface_tension.interfacial_sigma";

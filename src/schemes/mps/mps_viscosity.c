@@ -1,9 +1,9 @@
 /* The viscous terms of MPS (Koshizuka & Oka 1996; seed 003): nu lap u with the Laplacian of
  * eq. 7-8, explicit (u* = u^n + dt (a + nu lap u^n)), implicit ((1 - dt nu lap) u* = u^n + dt a,
  * by conjugate gradients on the matrix of mps_assemble) or both (`viscosity: mixed`); and the
- * rheology (docs/rheology.md): the shear-rate dependent viscosity from the corrected velocity
- * gradient, and the polymer stress of visco-elastic materials, its divergence and its update
- * (ry_polymer_step). */
+ * rheology (docs/reference/rheology.md): the shear-rate dependent viscosity from the corrected
+ * velocity gradient, and the polymer stress of visco-elastic materials, its divergence and its
+ * update (ry_polymer_step). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -13,7 +13,7 @@
 #include "physics/laplacian_mps_koshizuka1996.h"
 #include "schemes/mps/mps_internal.h"
 
-/* Rheology (docs/rheology.md); the polymer stress by components as ry_tau_index says. */
+/* Rheology (docs/reference/rheology.md); the polymer stress by components as ry_tau_index says. */
 
 ry_status mps_rheology_init(ry_sim *sim, mps *M, ry_error *err) {
     M->f_nu = M->f_gd = -1;

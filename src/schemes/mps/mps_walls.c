@@ -1,10 +1,10 @@
-/* The walls of MPS (docs/mps.md): wall particles, which take part in the pressure equation,
- * and dummy particles, which only add to the number density (their roles: mps_number_density);
- * thin walls (bodies[k].thin: a sheet's normals and the pairs it cuts, "Thin walls"); the wall
- * pressure for the gradient extrapolated from the fluid (as Adami et al. 2012 do for SPH); and
- * what the wall velocity of the viscous terms needs: the distances to the wall surface of the
- * mirrored no-slip wall (Morris et al. 1997) and the contact lines of two liquids, where a wall
- * gives no shear stress (Qian, Wang & Sheng 2003). */
+/* The walls of MPS (docs/reference/mps.md): wall particles, which take part in the pressure
+ * equation, and dummy particles, which only add to the number density (their roles:
+ * mps_number_density); thin walls (bodies[k].thin: a sheet's normals and the pairs it cuts, "Thin
+ * walls"); the wall pressure for the gradient extrapolated from the fluid (as Adami et al. 2012 do
+ * for SPH); and what the wall velocity of the viscous terms needs: the distances to the wall
+ * surface of the mirrored no-slip wall (Morris et al. 1997) and the contact lines of two liquids,
+ * where a wall gives no shear stress (Qian, Wang & Sheng 2003). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,8 +26,8 @@ ry_status mps_body_is_wall(ry_sim *sim, ry_case *c, size_t k, const char *key, r
     return RY_OK;
 }
 
-/* Thin walls (docs/mps.md, "Thin walls"): bodies[k].thin. A wall of one layer with air behind
- * it reads a number density below the free-surface threshold, and as free surface (p = 0) it
+/* Thin walls (docs/reference/mps.md, "Thin walls"): bodies[k].thin. A wall of one layer with air
+ * behind it reads a number density below the free-surface threshold, and as free surface (p = 0) it
  * could not hold the pressure of the fluid on its other side. The particles of such a body
  * with a fluid particle within reach always take part in the pressure equation. */
 ry_status mps_body_thin(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
@@ -49,8 +49,8 @@ ry_status mps_body_thin(ry_sim *sim, ry_case *c, mps *M, ry_error *err) {
     return RY_OK;
 }
 
-/* Thin walls, part 2 (docs/mps.md, "Thin walls"): pairs on the two sides of a thin wall take
- * no part in any term. Each thin wall particle k has the unit normal of its body's sheet (the
+/* Thin walls, part 2 (docs/reference/mps.md, "Thin walls"): pairs on the two sides of a thin wall
+ * take no part in any term. Each thin wall particle k has the unit normal of its body's sheet (the
  * null direction of the second moment of the same body's particles within 1.5 l0; none where
  * the body turns a corner, so that it cuts nothing there). The pair
  * (i, j) is cut where it crosses the plane of some thin wall particle k near either end (both

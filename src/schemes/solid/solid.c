@@ -1,6 +1,6 @@
 /* SPH for elastic solids, total-Lagrangian form with corrected kernel gradients (seed 000,
- * SPEC section 2; docs/solid.md). The scheme's set-up, loads, initial velocity, time stepping
- * and probes serve the updated-Lagrangian form (updated.c, scheme.formulation) as well.
+ * SPEC section 2; docs/reference/solid.md). The scheme's set-up, loads, initial velocity, time
+ * stepping and probes serve the updated-Lagrangian form (updated.c, scheme.formulation) as well.
  *
  * Every quantity refers to the reference (initial) configuration X, in which the neighbour list,
  * the kernel gradients grad W_ij = grad_X W(|X_i - X_j|) and the volumes V_j = m_j / rho0_j are

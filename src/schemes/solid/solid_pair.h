@@ -1,6 +1,6 @@
-/* The pair terms of the SPH solids (docs/solid.md), for particle i and neighbour j, tensors as
- * 3 x 3 arrays in row-major order: the velocity gradient and correction moment of the updated
- * Lagrangian's rates pass (below), and the momentum equations:
+/* The pair terms of the SPH solids (docs/reference/solid.md), for particle i and neighbour j,
+ * tensors as 3 x 3 arrays in row-major order: the velocity gradient and correction moment of the
+ * updated Lagrangian's rates pass (below), and the momentum equations:
  *
  *   updated Lagrangian (Gray, Monaghan & Swift 2001; seed 000 eq. 14-18):
  *     m_i dv_i/dt gains  sigma_i w_i + sigma_j w_j + m_i m_j (f_ij^n (R_i + R_j) - Pi_ij I) grad_i
@@ -72,7 +72,7 @@ RY_HD static inline void ry_solid_tl_pair(double *f, const double *Ai, double vi
     }
 }
 
-/* The strain-gradient stresses' pair (docs/solid.md, strain-gradient cell integration):
+/* The strain-gradient stresses' pair (docs/reference/solid.md, strain-gradient cell integration):
  * sum_k V_i Q_i,k H_ij,k - V_j Q_j,k H_ji,k into f, with Q_k (3 x 3 each, k < dim) the
  * stresses that act through the quadratic fit's second-derivative weights H (dim x dim per
  * pair, row k). */

@@ -1,5 +1,5 @@
-/* SPH for elastic solids, total-Lagrangian form (seed 000; docs/solid.md): the neighbour list,
- * kernel gradients and corrections of the reference configuration, the stresses (with the
+/* SPH for elastic solids, total-Lagrangian form (seed 000; docs/reference/solid.md): the neighbour
+ * list, kernel gradients and corrections of the reference configuration, the stresses (with the
  * strain-gradient term of gradient integration) and the forces, and the residual of a static
  * solution. */
 #include <math.h>

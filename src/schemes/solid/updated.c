@@ -1,5 +1,5 @@
 /* SPH for elastic solids, updated-Lagrangian form (seed 000 eq. 14-18, SPEC section 2; Gray,
- * Monaghan & Swift 2001; docs/solid.md).
+ * Monaghan & Swift 2001; docs/reference/solid.md).
  *
  * Every quantity refers to the current configuration; the neighbour list follows the particles
  * (ry_sim_neighbors). With V_j = m_j / rho_j and gradient weights G_ij built from the current

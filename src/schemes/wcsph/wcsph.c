@@ -87,7 +87,7 @@ static ry_status wcsph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     RY_TRY(ry_case_choice(c, "scheme.viscosity_correction", "none", viscosity_correction_names,
                           &corr, err));
     /* The lattice's value of the Morris term for a unit Laplacian (Wendland C2, h = 1.4 dx, 2D:
-     * 0.979); the transport-velocity form has no 0.01 h^2 (docs/wcsph.md). */
+     * 0.979); the transport-velocity form has no 0.01 h^2 (docs/reference/wcsph.md). */
     const double dxd = sim->dim > 2 ? sim->dx * sim->dx * sim->dx : sim->dx * sim->dx;
     const double eta2 = w->tvf ? 0.0 : ry_morris_eta2(sim->kernel.h);
     w->mu_corr =

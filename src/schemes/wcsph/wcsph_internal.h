@@ -57,7 +57,8 @@ typedef struct wcsph {
     ry_pair_cache pc;      /* its kernel gradients */
     double *vol;           /* its particle volumes m / rho */
     size_t vol_cap;
-    /* Free-surface tension (the surface_tension section; list loop only; docs/wcsph.md) */
+    /* Free-surface tension (the surface_tension section; list loop only; docs/reference/wcsph.md)
+     */
     ry_surface_tension st;
     double st_beta; /* CSF pressure form: surface where sum_j W < st_beta times the lattice's */
     double st_w0;   /* the lattice's kernel sum */

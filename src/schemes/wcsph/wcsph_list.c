@@ -3,7 +3,7 @@
  * momentum equation with the artificial viscosity of Monaghan (1992) and the laminar viscosity
  * of Morris et al. (1997), the continuity equation with delta-SPH density diffusion (Molteni &
  * Colagrossi 2009; Fourtakas et al. 2019), the energy equation and variable h (seed eq. 3.26,
- * 3.43, 3.50-3.52; docs/wcsph.md). */
+ * 3.43, 3.50-3.52; docs/reference/wcsph.md). */
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>

@@ -16,7 +16,8 @@
  *   eta^2) for approaching pairs (0 otherwise), c_ij and rho_ij the pair's means,
  * and the Morris weight L_ij = V_j x_ij . grad_i W_ij / (r^2 + eta^2)
  * (physics/viscosity_morris1997.h). v~_j is the velocity viscous terms see: the ghost velocity
- * of a no-slip wall (boundary/walls_adami2012.h), v_j elsewhere. Equations: docs/wcsph.md.
+ * of a no-slip wall (boundary/walls_adami2012.h), v_j elsewhere. Equations:
+ * docs/reference/wcsph.md.
  *
  * The view of a pair is three records: wc_pair_k (the run's constants), wc_pair_i (particle i)
  * and wc_pair_j (neighbour j), filled by the traversal from the field table (double) or from the

@@ -80,8 +80,8 @@ static void polymer_forces(ry_sim *sim, const wcsph *w, force_out *res) {
     res->amax2 = amax2;
 }
 
-/* Free-surface tension (docs/wcsph.md, "Surface tension"): the surface_tension section as in
- * MPS and IISPH, on the neighbour-list loop. The potential model and CSF in force form add their
+/* Free-surface tension (docs/reference/wcsph.md, "Surface tension"): the surface_tension section as
+ * in MPS and IISPH, on the neighbour-list loop. The potential model and CSF in force form add their
  * accelerations. CSF in pressure form: the surface particles (kernel sum below st_beta times the
  * lattice's) take the Laplace jump P_i = sigma kappa_i as their pressure instead of the equation
  * of state's, and their pressure force counts pressures from P_i:

@@ -1,7 +1,7 @@
 /* The pair term of the transport-velocity formulation of Adami, Hu & Adams (2013), J. Comput.
- * Phys. 241: 292, eq. 8 and 13 (scheme.transport_velocity; docs/wcsph.md): a momentum equation
- * of its own, not the seed's (wcsph_pair.h), so a pair function of its own. For fluid particle
- * i and neighbour j (fluid or wall), with V = m / rho and grad_i W_ij = fw x_ij,
+ * Phys. 241: 292, eq. 8 and 13 (scheme.transport_velocity; docs/reference/wcsph.md): a momentum
+ * equation of its own, not the seed's (wcsph_pair.h), so a pair function of its own. For fluid
+ * particle i and neighbour j (fluid or wall), with V = m / rho and grad_i W_ij = fw x_ij,
  *
  *   m_i dv_i/dt = sum_j (V_i^2 + V_j^2) [ -p~_ij grad_i W_ij
  *                   + 1/2 (A_i + A_j) . grad_i W_ij + eta_ij (v_i - v~_j) fw ]       (eq. 8)
