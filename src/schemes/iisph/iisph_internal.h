@@ -63,6 +63,7 @@ typedef struct iisph {
     ry_colour colour;
     ry_pair_cache pc;
     double *delta, *dstar, *aii, *dii, *sum, *pnew, *acc; /* per particle scratch */
+    double *perr;  /* per particle: its density error in the last Jacobi sweep (0: not counted) */
     double *vg[3]; /* velocity seen by the viscous term, one array per component */
     size_t cap;
     double *mu;       /* dynamic viscosity per material */

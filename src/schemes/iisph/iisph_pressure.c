@@ -228,11 +228,12 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
         }
         pressure_sums(sim, s, p, dt2);
         if (sim->par) sim->par->sync(sim, s->sum, 3);
-        double esum = 0, lsum = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : esum, lsum)
+        double *perr = s->perr;
+#pragma omp parallel for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
             if (kind[i] != RY_KIND_FLUID) {
                 pnew[i] = p[i];
+                perr[i] = 0.0;
                 continue;
             }
             const double rest = dim == 3   ? jacobi_rest(s, gl, kind, m, p, dt2, i, 3)
@@ -249,11 +250,16 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
             pnew[i] = dirichlet ? pmin : pn > 0 ? pn : 0;
             /* Ihmsen's average density error: clamped (free-surface) particles count only when
              * compressed. */
-            const double e = (p[i] > pmin || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
+            perr[i] = (p[i] > pmin || err > 0) && !ry_sim_is_halo(sim, i) ? err : 0.0;
+        }
+        /* summed in the particles' order, not by the threads' shares: the same bits, and so
+         * the same iterations, on any thread count */
+        double esum = 0, lsum = 0;
+        for (size_t i = 0; i < n; ++i) {
             if (s->lt[i])
-                lsum += e;
+                lsum += perr[i];
             else
-                esum += e;
+                esum += perr[i];
         }
         memcpy(p, pnew, n * sizeof *p);
         if (sim->par) {
