@@ -80,6 +80,8 @@ static ry_status put_sim(const ry_sim *sim, ry_ck_writer *w, ry_error *err) {
     RY_TRY(ry_ck_put_text(w, "meta/scheme", sim->scheme->name, strlen(sim->scheme->name), err));
     RY_TRY(ry_ck_put_text(w, "meta/case", sim->case_name, strlen(sim->case_name), err));
     RY_TRY(ry_ck_put_i64(w, "meta/dimension", sim->dim, err));
+    RY_TRY(ry_ck_put_f64(w, "meta/spacing", sim->dx, err));
+    RY_TRY(ry_ck_put_f64(w, "meta/h_over_dx", sim->h_over_dx, err));
     for (int m = 0; m < sim->nmat; ++m) {
         char k[64];
         snprintf(k, sizeof k, "material/%d", m);
@@ -170,6 +172,19 @@ ry_status ry_sim_checkpoint_load(ry_sim *sim, const ry_ck_reader *r, ry_error *e
         char k[64];
         snprintf(k, sizeof k, "material/%d", m);
         RY_TRY(text_is(r, k, sim->mat[m].name, "material", err));
+    }
+    /* the particles' spacing and smoothing length are the checkpoint's (older checkpoints do not
+     * record them) */
+    const char *const geom[2] = {"meta/spacing", "meta/h_over_dx"};
+    const double want[2] = {sim->dx, sim->h_over_dx};
+    for (int k = 0; k < 2; ++k) {
+        double got;
+        if (!ry_ck_find(r, geom[k])) continue;
+        RY_TRY(ry_ck_get_f64(r, geom[k], &got, err));
+        RY_CHECK(err, got == want[k], RY_ERR_INPUT,
+                 "checkpoint %s: written with %s = %.9g, the case has %.9g (a restart keeps the "
+                 "case's spacing and kernel; set them as the run that wrote it did)",
+                 r->path, k ? "kernel.h_over_dx" : "spacing", got, want[k]);
     }
     RY_TRY(ry_ck_get_i64(r, "particles/n", &n, err));
     RY_CHECK(err, n >= 0 && n < ((int64_t)1 << 40), RY_ERR_INPUT,

@@ -46,6 +46,12 @@ run part "$DAM" $DAMSET --threads 2 --set time.max_steps=700
 grep -q "restarting from .*checkpoint_0000000700.ryc (step 700" "$T/part2.log" ||
     bad "restart did not name its checkpoint: $(cat "$T/part2.log")"
 same "$T/full" "$T/part" "dam break restarted at step 700"
+# a restart with another spacing is refused, naming the checkpoint's
+"$RY" run "$DAM" --set spacing=0.00625 --set time.end=0.2 --restart "$T/part" -o "$T/respaced" \
+    > "$T/respaced.log" 2>&1
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "written with spacing = 0.0125, the case has 0.00625" "$T/respaced.log" ||
+    bad "restart with another spacing: exit $rc: $(cat "$T/respaced.log")"
 
 # restarted NAME CASE STEPS LABEL: CASE (Oldroyd-B start-up, to 4 ms, one thread) run whole and
 # stopped at STEPS then continued with --restart ends bitwise the same
