@@ -43,10 +43,10 @@ io case.h csv.h checkpoint.h stl.h
 core particles.h kernel.h kernel_shapes.h corrected.h neighbor.h bench.h geometry.h sim.h material.h beam.h
 physics rheology.h surface_tension.h collisions.h open_boundary.h
 schemes mps.h schemes.h
-measure probes.h validate.h solid.h
+measure probes.h solid.h
 sim run.h output.h
 api ryushi.h
-validate plot.h manifest.h
+validate plot.h manifest.h validate.h
 EOF
 
 # file -> layer number (every file under src/ and include/ryushi/)

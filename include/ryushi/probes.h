@@ -28,4 +28,7 @@ double ry_profile_mean(const ry_sim *sim, const ry_profile *pf, int k, int value
  * wall particles; 0 (and NANs) when no particle is within the kernel support. */
 int ry_sample_point(const ry_sim *sim, const double *x, double *out);
 
+/* Largest speed of the fluid particles whose coordinate `axis` lies in [lo, hi]. */
+double ry_band_max_speed(const ry_sim *sim, int axis, double lo, double hi);
+
 #endif

@@ -1,11 +1,14 @@
 /* ryushi — validation: measured series and states compared with reference data and analytic
- * solutions (the cases are run through ry_run_case_file, ryushi/run.h). */
+ * solutions (the cases are run through ry_run_case_file, ryushi/run.h). Part of the layer
+ * above the library's interface (src/validate/): the program and the tests use it, the shared
+ * library does not hold it. */
 #ifndef RYUSHI_VALIDATE_H
 #define RYUSHI_VALIDATE_H
 
 #include <stdio.h>
 
 #include "ryushi/csv.h"
+#include "ryushi/probes.h" /* ry_band_max_speed */
 #include "ryushi/sim.h"
 
 /* Surge front against Martin & Moyce: Z = front_x / a against T = t sqrt(2 g / a). */
@@ -56,8 +59,6 @@ double ry_column_mean_between(const ry_table *series, const char *name, double t
  * fluid particles farther than r_out (2D: x, y; 3D: x, y, z). NAN when either set is empty. */
 double ry_pressure_jump(const ry_sim *sim, const double *centre, double r_in, double r_out);
 
-/* Largest speed of the fluid particles whose coordinate `axis` lies in [lo, hi]. */
-double ry_band_max_speed(const ry_sim *sim, int axis, double lo, double hi);
 /* Largest and rms speed of the fluid particles of one material (0 and 0 without any). */
 void ry_material_speeds(const ry_sim *sim, int material, double *vmax, double *vrms);
 
@@ -151,5 +152,39 @@ double ry_oldroyd_b_startup(double g, double H, double nu_s, double nu_p, double
 /* Mean x velocity of the fluid particles by row (rows of a lattice of spacing l0 whose first
  * row is at y0 + l0/2): y[r], u[r] for r < max; returns the rows filled. */
 size_t ry_row_velocity(const ry_sim *sim, double y0, double l0, double *y, double *u, size_t max);
+
+/* Reference solutions for a cantilever of length L clamped at x = 0 (unit intensity: the
+ * deflection is proportional to it). Load types as in the case key scheme.load.type. */
+typedef enum ry_beam_load {
+    RY_BEAM_LOAD_NONE,
+    RY_BEAM_LOAD_END,     /* point load P at x = L */
+    RY_BEAM_LOAD_UNIFORM, /* q = q0 */
+    RY_BEAM_LOAD_LINEAR,  /* q = q0 x / L ("hydrostatic", largest at the free end) */
+    RY_BEAM_LOAD_COSINE   /* q = q0 cos(pi x / (2 L)) */
+} ry_beam_load;
+/* Euler-Bernoulli deflection w(x) = (1/EI) int_0^x (x - s) M(s) ds for intensity 1. */
+double ry_beam_deflection_eb(ry_beam_load load, double L, double EI, double x);
+/* Timoshenko's shear deflection int_0^x V(s) ds / (kappa G A) for intensity 1 (add it to the
+ * Euler-Bernoulli one); kappa = 5/6 for a rectangle. */
+double ry_beam_deflection_shear(ry_beam_load load, double L, double kappa_GA, double x);
+/* Elastica of a cantilever under a dead end load P normal to it, alpha2 = P L^2 / EI: the tip
+ * position (x along the undeformed beam, y along the load) in units of L, and the tip angle. */
+void ry_elastica_end_load(double alpha2, double *x_tip, double *y_tip, double *theta_tip);
+
+/* Angular frequency of the first bending mode of a clamped-free plate of length L and
+ * thickness H in cylindrical bending (thin-plate theory, plane strain):
+ * omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)), k = RY_CANTILEVER_KL1 / L. */
+double ry_plate_omega(double E, double nu, double rho, double H, double L);
+
+/* Complete elliptic integrals of the first and second kind, K(p) and E(p), modulus p < 1
+ * (arithmetic-geometric mean). */
+void ry_elliptic_ke(double p, double *K, double *E);
+
+/* Euler's elastica of a clamped-free column under a dead axial end load P above the critical
+ * load P_cr = pi^2 EI / (4 L^2), load_ratio = P / P_cr >= 1 (Timoshenko & Gere 1961, sec. 2.7):
+ * kL = sqrt(P / EI) L = K(p), p = sin(theta_tip / 2); tip position in units of L along the
+ * undeformed axis from the root, 2 E(p) / K(p) - 1, and across it, 2 p / K(p). At or below the
+ * critical load the column stays straight: (1, 0, 0). */
+void ry_elastica_column(double load_ratio, double *x_tip, double *y_tip, double *theta_tip);
 
 #endif

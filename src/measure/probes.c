@@ -670,3 +670,17 @@ static const ry_probe *const all_probes[] = {&p_mass,
 const ry_probe *const *ry_probes(void) {
     return all_probes;
 }
+
+double ry_band_max_speed(const ry_sim *sim, int axis, double lo, double hi) {
+    const ry_particles *ps = &sim->ps;
+    double m = 0;
+    for (size_t i = 0; i < ps->n; ++i) {
+        if (ps->kind[i] != RY_KIND_FLUID) continue;
+        const double x = ps->f[RY_F_X + axis][i];
+        if (x < lo || x > hi) continue;
+        double u2 = 0;
+        for (int d = 0; d < sim->dim; ++d) u2 += ps->f[RY_F_VX + d][i] * ps->f[RY_F_VX + d][i];
+        m = fmax(m, sqrt(u2));
+    }
+    return m;
+}

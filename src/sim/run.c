@@ -5,7 +5,7 @@
 
 #include "sim/writer.h"
 #include "ryushi/sim.h"
-#include "ryushi/validate.h"
+#include "ryushi/probes.h"
 #include "core/guard_check.h"
 #include "ryushi/clock.h"
 #include "ryushi/open_boundary.h"

@@ -2,7 +2,8 @@
  * the vibrating plate and the buckled column. */
 #include <math.h>
 
-#include "ryushi/solid.h"
+#include "ryushi/beam.h"
+#include "ryushi/validate.h"
 
 #define PI 3.14159265358979323846
 
