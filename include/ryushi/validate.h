@@ -187,4 +187,22 @@ void ry_elliptic_ke(double p, double *K, double *E);
  * critical load the column stays straight: (1, 0, 0). */
 void ry_elastica_column(double load_ratio, double *x_tip, double *y_tip, double *theta_tip);
 
+/* The equilibrium of a tamponade: a lighter liquid (silicone oil) above a heavier one (saline)
+ * filling a sphere of radius R, their interface an axisymmetric Young-Laplace surface under
+ * gravity along the axis, meeting the wall at the contact angle theta measured through the
+ * heavier liquid (Fawcett, Williams & Wong 1994: 18 degrees for oil on retina). fill: the
+ * lighter liquid's share of the volume; bond = (rho_heavy - rho_light) g R^2 / sigma. Lengths in
+ * units of R, the sphere centred at 0, z up. With bond = 0 the interface is a sphere's cap; as
+ * bond grows it flattens towards the plane z = z_c, where fill = x^2 (3 - 2x) and coverage =
+ * x. */
+typedef struct ry_tamponade {
+    double z_apex;          /* the interface on the axis */
+    double z_contact;       /* the contact line's height */
+    double r_contact;       /* and its radius */
+    double coverage;        /* share of the wall's area the lighter liquid covers */
+    double fill, theta, k0; /* as found: the fill, the angle (rad), the apex curvature (1/R) */
+} ry_tamponade;
+ry_status ry_tamponade_solve(double fill, double theta, double bond, ry_tamponade *out,
+                             ry_error *err);
+
 #endif
