@@ -15,8 +15,9 @@
 #include "ryushi/run.h"
 #include "ryushi/validate.h"
 
-static void verdict(int *failures, const char *what, int ok) {
-    ry_cli_check(what, ok, failures);
+/* A check of a figure against its bound, both recorded. */
+static void verdict(int *failures, const char *what, double figure, double bound, int ok) {
+    ry_cli_check_figure(what, figure, bound, ok, failures);
 }
 
 /* Slice y = 0 of the eye (|y| < dx): walls, saline and oil as markers, x and z in mm. */
@@ -114,6 +115,11 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
  * where the oil arrives last, the cavity keeps the injected oil (within 3 %), and the filling and
  * the contact agree at the two time steps. */
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures) {
+    /* the tolerances of validation/eye.yaml */
+    enum { KEPT, FILLED, CONTACT, NTOL };
+    static const char *const keys[NTOL] = {"oil_kept", "filled_fraction_dt", "contact_dt"};
+    double tol[NTOL];
+    if (ry_cli_tolerances(root, "eye", NTOL, keys, tol, failures)) return 1;
     ry_error err = {0};
     const double tq[2] = {0.05, 0.1}, tf[3] = {0.3, 0.6, 1.0};
     const double *times = quick ? tq : tf;
@@ -151,12 +157,17 @@ int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failu
     printf("  posterior drain: largest |oil kept - 1| %.3f; its own step against 2e-4 s: filled "
            "fraction within %.4f, contact within %.4f\n",
            dkept, dff, doc);
-    verdict(failures, "eye, posterior drain: the cavity keeps the injected oil within 3 %",
-            dkept <= 0.03);
-    verdict(failures, "eye, posterior drain: filled fraction, own step vs 2e-4 s, within 0.01",
-            dff <= 0.01);
-    verdict(failures, "eye, posterior drain: oil-wall contact, own step vs 2e-4 s, within 0.02",
-            doc <= 0.02);
+    char what[128];
+    snprintf(what, sizeof what,
+             "eye, posterior drain: the cavity keeps the injected oil within %g %%",
+             100 * tol[KEPT]);
+    verdict(failures, what, dkept, tol[KEPT], dkept <= tol[KEPT]);
+    snprintf(what, sizeof what,
+             "eye, posterior drain: filled fraction, own step vs 2e-4 s, within %g", tol[FILLED]);
+    verdict(failures, what, dff, tol[FILLED], dff <= tol[FILLED]);
+    snprintf(what, sizeof what,
+             "eye, posterior drain: oil-wall contact, own step vs 2e-4 s, within %g", tol[CONTACT]);
+    verdict(failures, what, doc, tol[CONTACT], doc <= tol[CONTACT]);
     return 0;
 }
 
@@ -184,6 +195,10 @@ int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, 
         {"prone", 0.0, "highest point"},
     };
     const int npos = (int)(sizeof pos / sizeof pos[0]);
+    /* the bounds of validation/eye_positions.yaml [s] */
+    static const char *const keys[2] = {"supine_kept_until", "prone_reached_by"};
+    double tol[2];
+    if (ry_cli_tolerances(root, "eye_positions", 2, keys, tol, failures)) return 1;
     const double t_end = quick ? 1.0 : 3.6, times[3] = {1.0, 2.0, 3.6};
     ry_error err = {0};
     char cpath[4096], mdp[4096];
@@ -265,12 +280,16 @@ int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, 
         else
             printf("  table: %s\n", mdp);
     }
+    char what[128];
     /* the oil reaches 0.75 of the cavity in 2.7 s at this rate (1 cavity volume in 3.6 s) */
-    if (!quick)
-        verdict(failures, "eye positions: supine, the oil kept until 2.7 s (drainage lowest)",
-                !(reached[0] <= 2.7));
-    verdict(failures, "eye positions: face-down, the oil at the drainage by 1.0 s (highest)",
-            reached[4] <= 1.0);
+    if (!quick) {
+        snprintf(what, sizeof what,
+                 "eye positions: supine, the oil kept until %g s (drainage lowest)", tol[0]);
+        verdict(failures, what, reached[0], tol[0], !(reached[0] <= tol[0]));
+    }
+    snprintf(what, sizeof what,
+             "eye positions: face-down, the oil at the drainage by %.1f s (highest)", tol[1]);
+    verdict(failures, what, reached[4], tol[1], reached[4] <= tol[1]);
     return 0;
 }
 
@@ -283,6 +302,10 @@ int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, 
  * cavity stays full (the fluid particles within 1.5 % of their number at the start, at every
  * output), and the oil reaches the drainage no sooner than at 2 ml/s (3.05 s there: 6.1 ml). */
 int ry_cli_validate_eye_clinical(const char *root, const char *out, int quick, int *failures) {
+    /* the bounds of validation/eye_clinical.yaml */
+    static const char *const keys[2] = {"fluid_count", "reached_fast_ml"};
+    double tol[2];
+    if (ry_cli_tolerances(root, "eye_clinical", 2, keys, tol, failures)) return 1;
     enum { NT_MAX = 6 };
     const int nt = quick ? 2 : NT_MAX;
     double tc[NT_MAX], tf[NT_MAX];
@@ -368,10 +391,12 @@ int ry_cli_validate_eye_clinical(const char *root, const char *out, int quick, i
             printf("  table: %s\n", mdp);
     }
     /* the outflow zone starts empty: 16 particles (0.7 %) of saline fall into it at first */
-    verdict(failures, "eye, 0.1 ml/s: the cavity stays full (fluid particles within 1.5 %)",
-            drift <= 0.015);
+    char what[128];
+    snprintf(what, sizeof what,
+             "eye, 0.1 ml/s: the cavity stays full (fluid particles within %g %%)", 100 * tol[0]);
+    verdict(failures, what, drift, tol[0], drift <= tol[0]);
     if (!quick) /* 2 ml/s: the oil reaches the drainage at 3.05 s, 6.1 ml */
         verdict(failures, "eye, 0.1 ml/s: the oil reaches the drainage no sooner than at 2 ml/s",
-                !(at_ml < 6.1));
+                at_ml, tol[1], !(at_ml < tol[1]));
     return 0;
 }

@@ -152,7 +152,7 @@ int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int
     snprintf(what, sizeof what, "every error <= %g %% at t/dx = %d", 100 * tol[LINEAR],
              nthick[nres - 1]);
     int ok = worst <= 100 * tol[LINEAR];
-    ry_cli_check(what, ok, failures);
+    ry_cli_check_figure(what, worst / 100, tol[LINEAR], ok, failures);
     if (nres > 1) {
         ry_cli_check("tip error decreases from t/dx = 4 to 8 (every kernel, load)", decreasing,
                      failures);
@@ -181,7 +181,7 @@ int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int
     snprintf(what, sizeof what, "tip within %g %% of L of the elastica at t/dx = %d",
              100 * tol[ELASTICA], nthick[nres - 1]);
     ok = last <= 100 * tol[ELASTICA];
-    ry_cli_check(what, ok, failures);
+    ry_cli_check_figure(what, last / 100, tol[ELASTICA], ok, failures);
 
     /* 3D bar (cases/cantilever_3d.yaml): square section t = 0.1, L/t = 10, EI = 1, end load */
     {
@@ -221,7 +221,8 @@ int ry_cli_validate_cantilever(const char *root, const char *out, int quick, int
             ry_sim_free(&sim);
         }
         snprintf(what, sizeof what, "3D bar: tip within %g %% of Timoshenko", 100 * tol[BAR3D]);
-        ry_cli_check(what, fabs(e3) <= 100 * tol[BAR3D], failures);
+        ry_cli_check_figure(what, fabs(e3) / 100, tol[BAR3D], fabs(e3) <= 100 * tol[BAR3D],
+                            failures);
     }
 
     /* plot: deflection profile, and tip errors against resolution */
@@ -359,12 +360,13 @@ int ry_cli_validate_plate(const char *root, const char *out, int quick, int *fai
             snprintf(what, sizeof what, "%s, H/dx = %d: energy does not grow over 10 periods",
                      form == 0 ? "UL" : "TL", nh[r]);
             int ok = o.energy_last <= o.energy_first * (1 + tol[ENERGY_GROWTH]);
-            ry_cli_check(what, ok, failures);
+            ry_cli_check_figure(what, o.energy_last / o.energy_first - 1, tol[ENERGY_GROWTH], ok,
+                                failures);
             if (form == 0) {
                 snprintf(what, sizeof what, "UL, H/dx = %d: no clumping (min r/dx >= %g)", nh[r],
                          tol[UL_MIN_SPACING]);
                 ok = msp >= tol[UL_MIN_SPACING];
-                ry_cli_check(what, ok, failures);
+                ry_cli_check_figure(what, msp, tol[UL_MIN_SPACING], ok, failures);
             }
         }
     /* verdicts (validation/plate.yaml): the total-Lagrangian form at every resolution; the
@@ -372,15 +374,17 @@ int ry_cli_validate_plate(const char *root, const char *out, int quick, int *fai
     char what[128];
     snprintf(what, sizeof what, "TL: period within %g %% of thin-plate theory",
              100 * tol[TL_PERIOD]);
-    ry_cli_check(what, fabs(err_tl[nres - 1]) <= 100 * tol[TL_PERIOD], failures);
+    ry_cli_check_figure(what, fabs(err_tl[nres - 1]) / 100, tol[TL_PERIOD],
+                        fabs(err_tl[nres - 1]) <= 100 * tol[TL_PERIOD], failures);
     snprintf(what, sizeof what, "UL: period within %g %% at H/dx = 4", 100 * tol[UL_PERIOD_4]);
-    ry_cli_check(what, fabs(err_ul[0]) <= 100 * tol[UL_PERIOD_4], failures);
+    ry_cli_check_figure(what, fabs(err_ul[0]) / 100, tol[UL_PERIOD_4],
+                        fabs(err_ul[0]) <= 100 * tol[UL_PERIOD_4], failures);
     if (nres > 1) {
         snprintf(what, sizeof what, "UL: error falls with resolution, within %g %% at H/dx = 8",
                  100 * tol[UL_PERIOD_8]);
         const int ok =
             fabs(err_ul[1]) < fabs(err_ul[0]) && fabs(err_ul[1]) <= 100 * tol[UL_PERIOD_8];
-        ry_cli_check(what, ok, failures);
+        ry_cli_check_figure(what, fabs(err_ul[1]) / 100, tol[UL_PERIOD_8], ok, failures);
     }
     ry_plot_legend(p, 0, RY_PLOT_LEGEND_NE, &err);
     finish_plot(p, out, "oscillating_plate.png", failures);
@@ -485,7 +489,7 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
     char what[128];
     snprintf(what, sizeof what, "critical load within %g %% of pi^2 EI / (4 L^2)", 100 * tol[0]);
     int ok = fabs(pcr_sw - 1) <= tol[0];
-    ry_cli_check(what, ok, failures);
+    ry_cli_check_figure(what, fabs(pcr_sw - 1), tol[0], ok, failures);
 
     /* above: the post-buckled tip against Euler's elastica */
     const double sup[3] = {1.2, 1.1, 1.5};
@@ -527,7 +531,7 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
     ok = worst_own <= tol[1];
     snprintf(what, sizeof what, "post-buckled tip within %g %% of L of the elastica (own P_cr)",
              100 * tol[1]);
-    ry_cli_check(what, ok, failures);
+    ry_cli_check_figure(what, worst_own, tol[1], ok, failures);
     printf("  post-buckled shape (VTK): %s/buckling_1.20/\n", out);
     ry_plot_legend(p, 1, RY_PLOT_LEGEND_SW, &err);
     finish_plot(p, out, "filament_buckling.png", failures);
