@@ -2,17 +2,22 @@
 every relative link resolves, every case file named exists, every command shown in a code
 block parses (its command exists, its options are the ones `ryushi help COMMAND` lists, its
 case loads with its --set overrides, the validations it names exist), and no file is longer
-than 600 lines.
+than 600 lines. And what the validation report says of each validation holds: the cases and
+the reference its manifest (validation/NAME.yaml) names exist, and its `make_test` lists
+exactly the tests that read its tolerances.
 
     python3 tests/docs/check_docs.py SOURCE_DIR RYUSHI
 
 Exit status 0 when all holds; 1 with each problem as FILE:LINE: what.
 """
+import glob
 import os
 import re
 import shlex
 import subprocess
 import sys
+
+import yaml
 
 MAX_LINES = 600
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
@@ -161,12 +166,48 @@ class Checker:
             self.bad(where, "link to %s, which does not exist" % target)
 
 
+def manifest_readers(root):
+    """{validation: the tests (ctest names) that read its tolerances}."""
+    readers = {}
+    for path in glob.glob(os.path.join(root, "tests", "physics", "*.c")) + \
+            glob.glob(os.path.join(root, "tests", "python", "*.py")):
+        text = open(path, encoding="utf-8").read()
+        names = set(re.findall(r'manifest_tol\(\w+, "(\w+)"', text))
+        names |= set(re.findall(r'\btol\("(\w+)"', text))
+        names |= set(re.findall(r'tolerance\(\w+, "(\w+)"', text))
+        base = os.path.basename(path)
+        test = "python.pytest" if base.endswith(".py") else "physics." + base[:-2]
+        for n in names:
+            readers.setdefault(n, set()).add(test)
+    return readers
+
+
+def check_manifests(checker, root):
+    readers = manifest_readers(root)
+    for path in sorted(glob.glob(os.path.join(root, "validation", "*.yaml"))):
+        rel = os.path.relpath(path, root)
+        name = os.path.basename(path)[:-5]
+        m = yaml.safe_load(open(path, encoding="utf-8"))
+        for case in m.get("cases") or []:
+            if not os.path.exists(os.path.join(root, case)):
+                checker.bad(rel, "no case file %s" % case)
+        ref = m.get("reference")
+        for r in ([] if ref in (None, "none") else ref if isinstance(ref, list) else [ref]):
+            if not os.path.exists(os.path.join(root, r)):
+                checker.bad(rel, "no reference file %s" % r)
+        listed = set(m.get("make_test") or [])
+        if listed != readers.get(name, set()):
+            checker.bad(rel, "make_test lists %s; the tests that read its tolerances are %s" % (
+                sorted(listed), sorted(readers.get(name, set()))))
+
+
 def main():
     root, binary = sys.argv[1], os.path.abspath(sys.argv[2])
     checker = Checker(root, binary)
     files = markdown_files(root)
     for rel in files:
         checker.check_file(rel)
+    check_manifests(checker, root)
     for p in checker.problems:
         print(p)
     print("docs: %d files, %d commands' cases loaded, %d problem(s)" % (
