@@ -37,9 +37,12 @@ int ry_cli_validate_buckling(const char *root, const char *out, int quick, int *
 
 /* The MPS scheme: hydrostatic column, oscillating drops, drop at rest (validate_mps.c). */
 int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failures);
-/* Sessile drops only (part of ry_cli_validate_mps): CSF with a contact angle and two liquids
- * with an angle per liquid. */
-int ry_cli_validate_wetting(const char *root, const char *out, int quick, int *failures);
+/* A validation given as data alone: the runs and figures of validation/name.yaml
+ * (validate_runs.c); adds its failed checks to *failures. */
+int ry_cli_validate_runs(const char *root, const char *out, int quick, const char *name,
+                         int *failures);
+/* Whether validation/name.yaml gives its runs as data. */
+int ry_cli_manifest_has_runs(const char *root, const char *name);
 /* The tolerances keys[0..n-1] of validation/name.yaml into values; 0, or 1 with the error
  * printed and counted as a failure. */
 int ry_cli_tolerances(const char *root, const char *name, int n, const char *const *keys,

@@ -1,7 +1,8 @@
 /* ryushi validate: the full-resolution validation cases, compared with their references,
  * with plots. Each has a manifest, validation/NAME.yaml (its summary, whether plain `ryushi
- * validate` runs it, its tolerances), and a function here that runs it; each run records its
- * checks for the report (validate_report.c). */
+ * validate` runs it, its tolerances), and either its runs as data (validate_runs.c) or, where
+ * its measures need code, a function here that runs it; each run records its checks for the
+ * report (validate_report.c). */
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,7 +37,6 @@ static const validation validations[] = {
     {"embolization3d", ry_cli_validate_embolization3d},
     {"embolization3d_all", ry_cli_validate_embolization3d_all},
     {"embolization3d_wide", ry_cli_validate_embolization3d_wide},
-    {"wetting", ry_cli_validate_wetting},
 };
 enum { NVALIDATIONS = sizeof validations / sizeof validations[0] };
 
@@ -105,7 +105,7 @@ int ry_cli_validate(int argc, char **argv) {
     }
     int rc = 0;
     for (int k = 0; k < n && !rc; ++k)
-        if (!runner(all[k].name)) {
+        if (!runner(all[k].name) && !ry_cli_manifest_has_runs(root, all[k].name)) {
             fprintf(stderr, "ryushi: validate: %s: no validation of that name in the program\n",
                     all[k].path);
             rc = 1;
@@ -142,7 +142,10 @@ int ry_cli_validate(int argc, char **argv) {
                             quick ? " --quick" : "");
                 ry_cli_results(rec ? af.fp : NULL);
                 const double t0 = omp_get_wtime();
-                runner(all[k].name)->run(root, out, quick, &failures);
+                if (runner(all[k].name))
+                    runner(all[k].name)->run(root, out, quick, &failures);
+                else
+                    ry_cli_validate_runs(root, out, quick, all[k].name, &failures);
                 ry_cli_results(NULL);
                 if (rec)
                     fprintf(af.fp, "# wall_s,%.1f\n# threads,%d\n", omp_get_wtime() - t0,

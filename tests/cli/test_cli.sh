@@ -126,5 +126,39 @@ expect 0 "report written into $T/doc.md" "$RY" validate --report -o "$T/val" --i
 echo "no markers" > "$T/plain.md"
 expect 2 "has no lines '<!-- ryushi validate --report: begin -->'" "$RY" validate --report -o "$T/val" --into "$T/plain.md"
 expect 2 "goes with --report" "$RY" validate channel --into "$T/doc.md"
+# a validation given as data alone (validation/README.md, "Runs as data"): the seed's dam break
+# at 20 x 40 to 0.05 s, the fluid's mass from 0.02 s on against 125 kg/m; and the same held to
+# a wrong mass fails
+mkdir -p "$T/proj/validation"
+ln -s "$SRC/cases" "$T/proj/cases"
+cat > "$T/proj/validation/mini.yaml" <<'YAML'
+name: mini
+summary: "the dam break's mass"
+order: 1
+tolerances:
+  mass: 1.0e-9
+runs:
+  - name: mini_db
+    heading: "the seed's dam break at 20 x 40"
+    case: cases/dam_break_seed.yaml
+    set: [spacing=0.0125, time.end=0.05, output.vtk=false]
+    label: "20 x 40"
+    what: "20 x 40: fluid mass against 125 kg/m"
+    column: mass
+    from: 0.02
+    expect: 125
+    tolerance: mass
+    figure: m
+figures:
+  - name: m
+    file: mini.png
+    title: "mass"
+    y: "kg/m"
+YAML
+expect 0 "20 x 40: fluid mass against 125 kg/m  *PASS" "$RY" validate mini --quick --root "$T/proj" -o "$T/mini"
+[ -f "$T/mini/mini.png" ] && grep -q '^"20 x 40: fluid mass against 125 kg/m",0,1e-09,PASS$' "$T/mini/results_mini.csv" &&
+    ok || bad "data-only validation: $(ls "$T/mini"; cat "$T/mini/results_mini.csv")"
+sed -i 's/expect: 125/expect: 124/' "$T/proj/validation/mini.yaml"
+expect 1 "20 x 40: fluid mass against 125 kg/m  *FAIL (1)" "$RY" validate mini --root "$T/proj" -o "$T/mini2"
 
 finish
