@@ -105,14 +105,16 @@ static void wall_time(FILE *md, const run_result *r) {
 static void items(FILE *md, ry_manifest *m, const char *key, const char *link) {
     const char *s;
     int i = 0;
+    int shown = 0;
     for (; (s = ry_manifest_item(m, key, i)) != NULL; ++i) {
-        if (i) fputs(", ", md);
+        if (strcmp(s, "none") == 0) continue; /* (a reference: none) */
+        if (shown++) fputs(", ", md);
         if (link)
             fprintf(md, "[%s](%s%s)", s, link, s);
         else
             fprintf(md, "`%s`", s);
     }
-    if (i == 0) fputs("-", md);
+    if (shown == 0) fputs("-", md);
 }
 
 /* The report's body: the table of every validation, then one section per validation. plots:
