@@ -41,8 +41,8 @@ int ry_cli_validate_mps(const char *root, const char *out, int quick, int *failu
  * (validate_runs.c); adds its failed checks to *failures. */
 int ry_cli_validate_runs(const char *root, const char *out, int quick, const char *name,
                          int *failures);
-/* Whether validation/name.yaml gives its runs as data. */
-int ry_cli_manifest_has_runs(const char *root, const char *name);
+/* Whether a validation's manifest gives its runs as data. */
+int ry_cli_manifest_has_runs(struct ry_manifest *m);
 /* The tolerances keys[0..n-1] of validation/name.yaml into values; 0, or 1 with the error
  * printed and counted as a failure. */
 int ry_cli_tolerances(const char *root, const char *name, int n, const char *const *keys,

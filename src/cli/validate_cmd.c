@@ -105,7 +105,7 @@ int ry_cli_validate(int argc, char **argv) {
     }
     int rc = 0;
     for (int k = 0; k < n && !rc; ++k)
-        if (!runner(all[k].name) && !ry_cli_manifest_has_runs(root, all[k].name)) {
+        if (!runner(all[k].name) && !ry_cli_manifest_has_runs(&all[k])) {
             fprintf(stderr, "ryushi: validate: %s: no validation of that name in the program\n",
                     all[k].path);
             rc = 1;
