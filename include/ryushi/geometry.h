@@ -28,6 +28,14 @@ ry_status ry_fill_box_wave(ry_particles *ps, const double *lo, const double *hi,
 /* Filled circle (2D) or sphere (3D). */
 ry_status ry_fill_sphere(ry_particles *ps, const double *centre, double radius, double dx,
                          const ry_body_style *st, size_t *added, ry_error *err);
+/* A circle or sphere whose surface is perturbed by one mode (a drop set to oscillate): the
+ * surface at R (1 + amplitude Y_n), Y_n = P_n(cos theta) in 3D (Legendre, theta from the z axis:
+ * axisymmetric about it), cos(n phi) in 2D (phi from the y axis: symmetric about it), R scaled so
+ * that the body holds the volume of the unperturbed one to second order in the amplitude. mode 0
+ * is the plain sphere; otherwise 2 <= mode <= 16 and |amplitude| <= 0.5. */
+ry_status ry_fill_sphere_mode(ry_particles *ps, const double *centre, double radius, int mode,
+                              double amplitude, double dx, const ry_body_style *st, size_t *added,
+                              ry_error *err);
 /* Filled (3D) cylinder from base centre along an axis (unit vector computed from axis) of a
  * length, with an outer radius and an inner radius (0 for solid; > 0 gives a tube). */
 ry_status ry_fill_cylinder(ry_particles *ps, const double *base, const double *axis, double length,

@@ -137,6 +137,11 @@ double ry_particles_kinetic_energy_of(const ry_particles *ps, int dim, ry_kind k
  * do not count; the moments are taken about the centroid of that drop (and of the particles
  * within 2 R of it). NAN without particles of the kind. */
 double ry_particles_shape_m4(const ry_particles *ps, int dim, ry_kind kind, double dx);
+/* The drop's mode-2 shape moment about its centroid (same particles as ry_particles_shape_m4):
+ * <z^2 - (x^2 + y^2)/2>/<r^2> in 3D, <y^2 - x^2>/(2 <r^2>) in 2D. For a drop whose surface lies
+ * at R (1 + eps P_2(cos theta)) (3D) or R (1 + eps cos 2 phi) (2D, phi from the y axis) it is eps
+ * to first order; 0 for a sphere or circle. */
+double ry_particles_shape_p2(const ry_particles *ps, int dim, ry_kind kind, double dx);
 /* Coordinates as the neighbour search takes them (x[d] for d < dim, NULL beyond). */
 static inline void ry_particles_coords(const ry_particles *ps, const double *x[3]) {
     x[0] = ps->f[RY_F_X];

@@ -12,6 +12,13 @@ double ry_cap_contact_angle(int dim, double h, double size);
 
 /* The registered probes, NULL-terminated. */
 const ry_probe *const *ry_probes(void);
+/* A probe's value (eval, or eval_item with its item). */
+ry_status ry_probe_eval(const ry_probe *p, const ry_sim *sim, double *value, ry_error *err);
+
+/* The case section `retina_regions` (ry_sim_setup calls it; each region's probe is appended
+ * to the measurements), and its release. */
+ry_status ry_regions_setup(ry_sim *sim, ry_case *c, ry_error *err);
+void ry_regions_free(ry_sim *sim);
 
 /* Profiles: read from the case (ry_sim_setup calls it), sampled and written as
  * profile_NAME.csv at each output time (ry_output_write calls it), freed. */

@@ -129,12 +129,26 @@ typedef struct ry_par_ops {
     ry_status (*checkpoint)(ry_sim *sim, char *path, size_t path_size, ry_error *err);
 } ry_par_ops;
 
-/* A measured quantity written as a column of series.csv. */
+/* A measured quantity written as a column of series.csv. A probe of an item of a case section
+ * (a retina region) has eval NULL and eval_item, called with its item's index; ry_probe_eval
+ * calls either. */
 typedef struct ry_probe {
     const char *name;
     const char *summary;
     ry_status (*eval)(const ry_sim *sim, double *value, ry_error *err);
+    ry_status (*eval_item)(const ry_sim *sim, int item, double *value, ry_error *err);
+    int item;
 } ry_probe;
+
+/* Case section `retina_regions` (3D, two materials): named regions of the wall, each the wall
+ * particles whose direction from `centre` lies within half_angle of `direction`; each adds the
+ * column coverage_NAME to series.csv (docs/reference/probes.md). */
+typedef struct ry_region {
+    char *name;
+    double centre[3], dir[3]; /* dir: unit */
+    double cos_half;          /* cos(half_angle) */
+    ry_probe probe;           /* coverage_NAME */
+} ry_region;
 
 /* A line profile (case file `profiles`): values sampled at evenly spaced points from `from` to
  * `to` at every output time, the state at that time or, with `average_from`, the mean over all
@@ -274,6 +288,8 @@ struct ry_sim {
     int droplet_material;
     double droplet_tip;
     double droplet_axis[2];
+    int nregions;
+    ry_region *regions;
     /* Case key time.stop_when: the run ends at the first output whose measured quantity (one
      * of probes, index stop_probe; -1: none) lies above (stop_above) or below stop_value.
      * stop_reason then says so. */
@@ -397,5 +413,10 @@ size_t ry_sim_count_outside(const ry_sim *sim);
 /* Particles other than i within `radius` of it, found through the cells of the last neighbour
  * search (radius at most the cell edge minus the distance moved since). */
 size_t ry_sim_count_within(const ry_sim *sim, size_t i, double radius);
+
+/* Head position k of the eye cases (case key `head_position`): its name (NULL past the last)
+ * and, in down, the direction of gravity in the eye's frame (x towards the patient's left, y
+ * superior, z anterior). */
+const char *ry_head_position(int k, double down[3]);
 
 #endif

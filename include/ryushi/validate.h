@@ -204,5 +204,11 @@ typedef struct ry_tamponade {
 } ry_tamponade;
 ry_status ry_tamponade_solve(double fill, double theta, double bond, ry_tamponade *out,
                              ry_error *err);
+/* The share of a region of the wall that the lighter liquid of t covers: the cone of half angle
+ * half_angle [rad] about the unit direction d, in the frame where the unit vector up points
+ * against gravity (the lighter liquid covers the wall above the contact line, p.up >=
+ * z_contact, in units of R). */
+double ry_tamponade_region_coverage(const ry_tamponade *t, const double up[3], const double d[3],
+                                    double half_angle);
 
 #endif

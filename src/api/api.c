@@ -313,6 +313,11 @@ const char *ry_sim_field_unit(const ry_sim *sim, const char *name) {
 
 int ry_sim_probe(ry_sim *sim, const char *name, double *value) {
     if (!sim || !name || !value) return fail_input("ry_sim_probe: %s", "missing argument");
+    for (int k = 0; k < sim->nregions; ++k) { /* the case's own: a retina region's coverage */
+        if (strcmp(sim->regions[k].probe.name, name) != 0) continue;
+        ry_error err = {0};
+        return ry_probe_eval(&sim->regions[k].probe, sim, value, &err) == RY_OK ? 0 : fail(&err);
+    }
     for (const ry_probe *const *p = ry_probes(); *p; ++p) {
         if (strcmp((*p)->name, name) != 0) continue;
         ry_error err = {0};

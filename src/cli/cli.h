@@ -83,6 +83,9 @@ int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *
 int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *failures);
 /* Only its Rayleigh-Taylor part (ryushi validate rt). */
 int ry_cli_validate_rt(const char *root, const char *out, int quick, int *failures);
+/* Oscillating drops of small amplitude against Lamb, at two spacings and steps
+ * (validate_surface_tension.c). */
+int ry_cli_validate_surface_tension(const char *root, const char *out, int quick, int *failures);
 /* Water and air in motion (IISPH with a light phase): the dam break under air and a standing
  * wave (part of ry_cli_validate_iisph). */
 int ry_cli_validate_air(const char *root, const char *out, int quick, int *failures);

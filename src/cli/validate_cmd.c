@@ -29,6 +29,7 @@ static const validation validations[] = {
     {"rheology", ry_cli_validate_rheology},
     {"iisph", ry_cli_validate_iisph},
     {"rt", ry_cli_validate_rt},
+    {"surface_tension", ry_cli_validate_surface_tension},
     {"air", ry_cli_validate_air},
     {"eye", ry_cli_validate_eye},
     {"eye_positions", ry_cli_validate_eye_positions},

@@ -114,12 +114,113 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
  * (implicit viscosity: about 6e-4 s, set by the speeds; again at 2e-4 s). Checks: with the drainage
  * where the oil arrives last, the cavity keeps the injected oil (within 3 %), and the filling and
  * the contact agree at the two time steps. */
+/* The equilibrium the filling tends to (src/validate/tamponade.c): the oil's axisymmetric
+ * Young-Laplace cap in the cavity of cases/eye_sphere.yaml (its radius, the two densities and
+ * the oil-saline tension of the case), the contact angle through the saline 18 degrees (Fawcett,
+ * Williams & Wong 1994); the retina's covered share at fills 0.5 to 0.95, and that of each of
+ * the case's retina regions in each head position at fills 0.8 and 0.9. A table on stdout and
+ * in eye_equilibrium.md; no check (the reference of the simulations at rest). */
+static void eye_equilibrium(const char *root, const char *out, int *failures) {
+    ry_error err = {0};
+    char path[4096];
+    snprintf(path, sizeof path, "%s/cases/eye_sphere.yaml", root);
+    ry_case *c = NULL;
+    ry_sim s; /* only its regions, read by ry_regions_setup */
+    memset(&s, 0, sizeof s);
+    s.dim = 3;
+    s.nmat = 2;
+    double R, rho_s, rho_o, sigma;
+    const double theta = 18.0 * 3.14159265358979323846 / 180.0, g = 9.81;
+    if (ry_case_load(&c, path, &err) != RY_OK ||
+        ry_case_double(c, "bodies[0].radius", NULL, 0, INFINITY, &R, &err) != RY_OK ||
+        ry_case_double(c, "materials[0].density", NULL, 0, INFINITY, &rho_s, &err) != RY_OK ||
+        ry_case_double(c, "materials[1].density", NULL, 0, INFINITY, &rho_o, &err) != RY_OK ||
+        ry_case_double(c, "scheme.surface_tension", NULL, 0, INFINITY, &sigma, &err) != RY_OK ||
+        ry_regions_setup(&s, c, &err) != RY_OK) {
+        ry_case_free(c);
+        ry_regions_free(&s);
+        ry_cli_fail(failures, &err);
+        return;
+    }
+    ry_case_free(c);
+    const double bond = (rho_s - rho_o) * g * R * R / sigma;
+    char mdp[4096];
+    snprintf(mdp, sizeof mdp, "%s/eye_equilibrium.md", out);
+    FILE *md = fopen(mdp, "w");
+    printf("Eye at equilibrium (Young-Laplace, cases/eye_sphere.yaml): R = %g mm, densities %g "
+           "and %g kg/m^3, tension %g N/m, Bond number %.3f, contact angle 18 degrees\n",
+           1e3 * R, rho_s, rho_o, sigma, bond);
+    printf("  %-6s %10s %12s %12s %12s\n", "fill", "coverage", "flat limit", "apex [mm]",
+           "contact [mm]");
+    if (md)
+        fprintf(md, "| fill | retina covered | flat interface | interface on the axis [mm] | "
+                    "contact line [mm] |\n|---|---|---|---|---|\n");
+    const double fills[] = {0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
+    for (size_t k = 0; k < sizeof fills / sizeof fills[0]; ++k) {
+        ry_tamponade t;
+        if (ry_tamponade_solve(fills[k], theta, bond, &t, &err) != RY_OK) {
+            ry_cli_fail(failures, &err);
+            continue;
+        }
+        /* the flat interface of the same fill: x^2 (3 - 2x) = fill, coverage x */
+        double lo = 0, hi = 1;
+        for (int i = 0; i < 60; ++i) {
+            const double x = 0.5 * (lo + hi);
+            if (x * x * (3 - 2 * x) < fills[k])
+                lo = x;
+            else
+                hi = x;
+        }
+        printf("  %-6.2f %9.1f%% %11.1f%% %12.2f %12.2f\n", fills[k], 100 * t.coverage, 100 * lo,
+               1e3 * R * t.z_apex, 1e3 * R * t.z_contact);
+        if (md)
+            fprintf(md, "| %.2f | %.1f %% | %.1f %% | %+.2f | %+.2f |\n", fills[k],
+                    100 * t.coverage, 100 * lo, 1e3 * R * t.z_apex, 1e3 * R * t.z_contact);
+    }
+    if (md) {
+        fprintf(md, "\n| fill | position |");
+        for (int r = 0; r < s.nregions; ++r) fprintf(md, " %s |", s.regions[r].name);
+        fprintf(md, "\n|---|---|");
+        for (int r = 0; r < s.nregions; ++r) fprintf(md, "---|");
+        fprintf(md, "\n");
+    }
+    printf("  retina regions covered (%%), by head position:\n  %-6s %-11s", "fill", "position");
+    for (int r = 0; r < s.nregions; ++r) printf(" %14s", s.regions[r].name);
+    printf("\n");
+    const double table_fills[2] = {0.8, 0.9};
+    for (int f = 0; f < 2; ++f) {
+        ry_tamponade t;
+        if (ry_tamponade_solve(table_fills[f], theta, bond, &t, &err) != RY_OK) {
+            ry_cli_fail(failures, &err);
+            continue;
+        }
+        double down[3];
+        for (int p = 0; ry_head_position(p, down); ++p) {
+            const double up[3] = {-down[0], -down[1], -down[2]};
+            printf("  %-6.2f %-11s", table_fills[f], ry_head_position(p, down));
+            if (md) fprintf(md, "| %.2f | %s |", table_fills[f], ry_head_position(p, down));
+            for (int r = 0; r < s.nregions; ++r) {
+                const ry_region *reg = &s.regions[r];
+                const double cov =
+                    ry_tamponade_region_coverage(&t, up, reg->dir, acos(reg->cos_half));
+                printf(" %13.0f%%", 100 * cov);
+                if (md) fprintf(md, " %.0f %% |", 100 * cov);
+            }
+            printf("\n");
+            if (md) fprintf(md, "\n");
+        }
+    }
+    if (md) fclose(md);
+    ry_regions_free(&s);
+}
+
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures) {
     /* the tolerances of validation/eye.yaml */
     enum { KEPT, FILLED, CONTACT, NTOL };
     static const char *const keys[NTOL] = {"oil_kept", "filled_fraction_dt", "contact_dt"};
     double tol[NTOL];
     if (ry_cli_tolerances(root, "eye", NTOL, keys, tol, failures)) return 1;
+    eye_equilibrium(root, out, failures);
     ry_error err = {0};
     const double tq[2] = {0.05, 0.1}, tf[3] = {0.3, 0.6, 1.0};
     const double *times = quick ? tq : tf;

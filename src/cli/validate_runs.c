@@ -18,6 +18,8 @@ enum { MAX_SETS = 16, MAX_FIGURES = 8 };
 typedef struct figure {
     const char *name, *file;
     ry_plot *plot;
+    int used; /* a run drew into it (a figure of the full version's runs alone is not written
+               * by the short one) */
 } figure;
 
 static const char *key_text(ry_manifest *m, const char *fmt, int k, const char *field,
@@ -25,13 +27,6 @@ static const char *key_text(ry_manifest *m, const char *fmt, int k, const char *
     char key[256];
     snprintf(key, sizeof key, fmt, k, field);
     return ry_manifest_text(m, key, def);
-}
-
-static ry_status key_number(ry_manifest *m, const char *fmt, int k, const char *field,
-                            const double *def, double *v, ry_error *err) {
-    char key[256];
-    snprintf(key, sizeof key, fmt, k, field);
-    return ry_case_double(m->doc, key, def, -INFINITY, INFINITY, v, err);
 }
 
 /* The figures of the manifest, drawn with their titles and axes (a figure that cannot be drawn
@@ -43,6 +38,7 @@ static int open_figures(ry_manifest *m, figure *f) {
         f[n].name = key_text(m, "figures[%d].%s", k, "name", NULL);
         f[n].file = key_text(m, "figures[%d].%s", k, "file", "figure.png");
         f[n].plot = NULL;
+        f[n].used = 0;
         if (ry_plot_new(&f[n].plot, 1, 1, 900, 600, &err) != RY_OK)
             f[n].plot = NULL;
         else
@@ -54,37 +50,91 @@ static int open_figures(ry_manifest *m, figure *f) {
     return n;
 }
 
-/* Run k of the manifest: its case with its overrides into out/NAME, the statistic of its column
- * against its expected value, the check, the curve into its figure. */
+static const char *field_text(ry_manifest *m, const char *prefix, const char *field,
+                              const char *def) {
+    char key[256];
+    snprintf(key, sizeof key, "%s.%s", prefix, field);
+    return ry_manifest_text(m, key, def);
+}
+
+/* One check of a run (prefix: "runs[k]", or "runs[k].checks[c]" for a run with several): the
+ * mean of its column over t >= from against its expected value within its tolerance, and the
+ * column's curve (in ms) into its figure. A check's keys default to the run's. */
+static void judge(ry_manifest *m, const char *run, const char *prefix, const ry_table *s,
+                  const char *label, const ry_run_stats *stats, figure *figs, int nfig,
+                  int *failures) {
+    ry_error err = {0};
+    const char *column = field_text(m, prefix, "column", field_text(m, run, "column", NULL));
+    const char *tol_key = field_text(m, prefix, "tolerance", field_text(m, run, "tolerance", NULL));
+    const char *what = field_text(m, prefix, "what", field_text(m, run, "what", label));
+    const char *fig = field_text(m, prefix, "figure", field_text(m, run, "figure", NULL));
+    double from = 0, expect = 0, tol = NAN;
+    char key[300];
+    snprintf(key, sizeof key, "%s.from", run);
+    ry_status st = ry_case_double(m->doc, key, &from, -INFINITY, INFINITY, &from, &err);
+    snprintf(key, sizeof key, "%s.from", prefix);
+    if (st == RY_OK) st = ry_case_double(m->doc, key, &from, -INFINITY, INFINITY, &from, &err);
+    snprintf(key, sizeof key, "%s.expect", prefix);
+    if (st == RY_OK && !ry_case_has(m->doc, key)) snprintf(key, sizeof key, "%s.expect", run);
+    if (st == RY_OK) st = ry_case_double(m->doc, key, NULL, -INFINITY, INFINITY, &expect, &err);
+    if (st == RY_OK && (!column || !tol_key))
+        st = ry_error_set(&err, RY_ERR_INPUT, "%s: %s needs column and tolerance", m->path, prefix);
+    if (st == RY_OK) st = ry_manifest_tol(m, tol_key, &tol, &err);
+    if (st != RY_OK) {
+        ry_cli_fail(failures, &err);
+        return;
+    }
+    const int ct = ry_table_col(s, "t"), ca = ry_table_col(s, column);
+    double sum = 0, lo = INFINITY, hi = -INFINITY;
+    int cnt = 0;
+    double *t = calloc(s->nrows + 1, sizeof *t), *a = calloc(s->nrows + 1, sizeof *a);
+    size_t np = 0;
+    for (size_t r = 0; r < s->nrows && ct >= 0 && ca >= 0; ++r) {
+        const double tr = ry_table_at(s, r, ct), ar = ry_table_at(s, r, ca);
+        if (t && a && isfinite(ar)) {
+            t[np] = 1e3 * tr;
+            a[np++] = ar;
+        }
+        if (tr < from) continue;
+        sum += ar;
+        lo = fmin(lo, ar);
+        hi = fmax(hi, ar);
+        ++cnt;
+    }
+    const double mean = cnt ? sum / cnt : NAN;
+    printf("  %-36s %s settles at %.4g (%.4g-%.4g from %g ms), %ld steps, %.1f s\n", label, column,
+           mean, lo, hi, 1e3 * from, stats->steps, stats->wall_s);
+    for (int f = 0; fig && f < nfig; ++f)
+        if (strcmp(figs[f].name, fig) == 0 && figs[f].plot && t && a) {
+            ry_plot_series(figs[f].plot, 0, label, np, t, a, ry_plot_style_line(), &err);
+            figs[f].used = 1;
+        }
+    ry_cli_check_figure(what, fabs(mean - expect), tol, fabs(mean - expect) <= tol, failures);
+    free(t);
+    free(a);
+}
+
+/* Run k of the manifest: its case with its overrides into out/NAME, then its check, or each of
+ * its `checks`. */
 static void one_run(const char *root, const char *out, ry_manifest *m, int k, figure *figs,
                     int nfig, int *failures) {
     ry_error err = {0};
-    const char *sub = key_text(m, "runs[%d].%s", k, "name", "run");
-    const char *case_rel = key_text(m, "runs[%d].%s", k, "case", NULL);
-    const char *column = key_text(m, "runs[%d].%s", k, "column", NULL);
-    const char *label = key_text(m, "runs[%d].%s", k, "label", sub);
-    const char *what = key_text(m, "runs[%d].%s", k, "what", label);
-    const char *tol_key = key_text(m, "runs[%d].%s", k, "tolerance", NULL);
-    const char *fig = key_text(m, "runs[%d].%s", k, "figure", NULL);
-    const double zero = 0;
-    double from = 0, expect = 0, tol = NAN;
-    ry_status st = RY_OK;
-    if (!case_rel || !column || !tol_key)
-        st = ry_error_set(&err, RY_ERR_INPUT, "%s: runs[%d] needs case, column and tolerance",
-                          m->path, k);
-    if (st == RY_OK) st = key_number(m, "runs[%d].%s", k, "from", &zero, &from, &err);
-    if (st == RY_OK) st = key_number(m, "runs[%d].%s", k, "expect", NULL, &expect, &err);
-    if (st == RY_OK) st = ry_manifest_tol(m, tol_key, &tol, &err);
+    char run[64], prefix[96];
+    snprintf(run, sizeof run, "runs[%d]", k);
+    const char *sub = field_text(m, run, "name", "run");
+    const char *case_rel = field_text(m, run, "case", NULL);
+    const char *label = field_text(m, run, "label", sub);
     const char *sets[MAX_SETS];
     int nset = 0;
-    for (int i = 0; st == RY_OK && i < MAX_SETS; ++i) {
+    for (int i = 0; i < MAX_SETS; ++i) {
         char key[256];
-        snprintf(key, sizeof key, "runs[%d].set", k);
-        const char *s = ry_manifest_item(m, key, i);
-        if (!s) break;
-        sets[nset++] = s;
+        snprintf(key, sizeof key, "%s.set", run);
+        const char *v = ry_manifest_item(m, key, i);
+        if (!v) break;
+        sets[nset++] = v;
     }
-    if (st != RY_OK) {
+    if (!case_rel) {
+        ry_error_set(&err, RY_ERR_INPUT, "%s: %s needs a case", m->path, run);
         ry_cli_fail(failures, &err);
         return;
     }
@@ -104,33 +154,15 @@ static void one_run(const char *root, const char *out, ry_manifest *m, int k, fi
         ry_cli_fail(failures, &err);
         return;
     }
-    /* the column's mean over t >= from (its range shown), and its curve in ms */
-    const int ct = ry_table_col(&s, "t"), ca = ry_table_col(&s, column);
-    double sum = 0, lo = INFINITY, hi = -INFINITY;
-    int cnt = 0;
-    double *t = calloc(s.nrows + 1, sizeof *t), *a = calloc(s.nrows + 1, sizeof *a);
-    size_t np = 0;
-    for (size_t r = 0; r < s.nrows && ct >= 0 && ca >= 0; ++r) {
-        const double tr = ry_table_at(&s, r, ct), ar = ry_table_at(&s, r, ca);
-        if (t && a && isfinite(ar)) {
-            t[np] = 1e3 * tr;
-            a[np++] = ar;
-        }
-        if (tr < from) continue;
-        sum += ar;
-        lo = fmin(lo, ar);
-        hi = fmax(hi, ar);
-        ++cnt;
+    snprintf(prefix, sizeof prefix, "%s.checks[0].column", run);
+    if (!ry_manifest_text(m, prefix, NULL))
+        judge(m, run, run, &s, label, &stats, figs, nfig, failures);
+    for (int c = 0;; ++c) {
+        snprintf(prefix, sizeof prefix, "%s.checks[%d].column", run, c);
+        if (!ry_manifest_text(m, prefix, NULL)) break;
+        snprintf(prefix, sizeof prefix, "%s.checks[%d]", run, c);
+        judge(m, run, prefix, &s, label, &stats, figs, nfig, failures);
     }
-    const double mean = cnt ? sum / cnt : NAN;
-    printf("  %-36s %s settles at %6.1f (%.1f-%.1f from %g ms), %ld steps, %.1f s\n", label, column,
-           mean, lo, hi, 1e3 * from, stats.steps, stats.wall_s);
-    for (int f = 0; fig && f < nfig; ++f)
-        if (strcmp(figs[f].name, fig) == 0 && figs[f].plot && t && a)
-            ry_plot_series(figs[f].plot, 0, label, np, t, a, ry_plot_style_line(), &err);
-    ry_cli_check_figure(what, fabs(mean - expect), tol, fabs(mean - expect) <= tol, failures);
-    free(t);
-    free(a);
     ry_table_free(&s);
 }
 
@@ -160,7 +192,7 @@ int ry_cli_validate_runs(const char *root, const char *out, int quick, const cha
     for (int f = 0; f < nfig; ++f) {
         if (!figs[f].plot) continue;
         ry_plot_legend(figs[f].plot, 0, RY_PLOT_LEGEND_SE, &err);
-        ry_cli_write_plot(figs[f].plot, out, figs[f].file, failures);
+        if (figs[f].used) ry_cli_write_plot(figs[f].plot, out, figs[f].file, failures);
         ry_plot_free(figs[f].plot);
     }
     ry_manifest_free(&m);

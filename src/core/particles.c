@@ -272,7 +272,10 @@ static int cmp_coord(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-double ry_particles_shape_m4(const ry_particles *ps, int dim, ry_kind kind, double dx) {
+/* The drop's shape moment of the given order about its centroid: order 4,
+ * <x^4+y^4+z^4>/<r^4> - 3/5 (2D <x^4+y^4>/<r^4> - 3/4); order 2, <z^2 - (x^2+y^2)/2>/<r^2> in 3D
+ * and <y^2 - x^2>/(2 <r^2>) in 2D. */
+static double shape_moment(const ry_particles *ps, int dim, ry_kind kind, double dx, int order) {
     size_t n = 0;
     for (size_t i = 0; i < ps->n; ++i) n += ps->kind[i] == kind;
     if (n == 0) return NAN;
@@ -292,28 +295,47 @@ double ry_particles_shape_m4(const ry_particles *ps, int dim, ry_kind kind, doub
     const double pi = 3.14159265358979323846;
     const double R = dim > 2 ? dx * cbrt(3.0 * (double)n / (4.0 * pi)) : dx * sqrt((double)n / pi);
     const double rmax2 = 4.0 * R * R;
+    const int up = dim - 1;
     for (int pass = 0; pass < 2; ++pass) { /* its centroid, then the moments about it */
-        double s4 = 0, r4 = 0, sum[3] = {0, 0, 0};
+        double num = 0, den = 0, sum[3] = {0, 0, 0};
         size_t k = 0;
         for (size_t i = 0; i < ps->n; ++i) {
             if (ps->kind[i] != kind) continue;
-            double q4 = 0, r2 = 0;
+            double q4 = 0, r2 = 0, x[3] = {0, 0, 0};
             for (int d = 0; d < dim; ++d) {
-                const double x = ps->f[RY_F_X + d][i] - (pass ? c[d] : m[d]), x2 = x * x;
+                x[d] = ps->f[RY_F_X + d][i] - (pass ? c[d] : m[d]);
+                const double x2 = x[d] * x[d];
                 q4 += x2 * x2;
                 r2 += x2;
             }
             if (r2 > rmax2) continue;
             for (int d = 0; d < dim; ++d) sum[d] += ps->f[RY_F_X + d][i];
-            s4 += q4;
-            r4 += r2 * r2;
+            if (order == 4) {
+                num += q4;
+                den += r2 * r2;
+            } else {
+                const double z2 = x[up] * x[up];
+                num += dim > 2 ? z2 - 0.5 * (r2 - z2) : 0.5 * (z2 - (r2 - z2));
+                den += r2;
+            }
             ++k;
         }
         if (k == 0) return NAN;
-        if (pass) return r4 > 0 ? s4 / r4 - (dim > 2 ? 0.6 : 0.75) : 0.0;
+        if (pass) {
+            if (!(den > 0)) return 0.0;
+            return order == 4 ? num / den - (dim > 2 ? 0.6 : 0.75) : num / den;
+        }
         for (int d = 0; d < dim; ++d) c[d] = sum[d] / (double)k;
     }
     return NAN;
+}
+
+double ry_particles_shape_m4(const ry_particles *ps, int dim, ry_kind kind, double dx) {
+    return shape_moment(ps, dim, kind, dx, 4);
+}
+
+double ry_particles_shape_p2(const ry_particles *ps, int dim, ry_kind kind, double dx) {
+    return shape_moment(ps, dim, kind, dx, 2);
 }
 
 double ry_particles_kinetic_energy_of(const ry_particles *ps, int dim, ry_kind kind,

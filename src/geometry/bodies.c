@@ -121,7 +121,20 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
         double centre[3], r;
         RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "centre"), NULL, dim, centre, err));
         RY_TRY(ry_case_positive(c, key(k, sizeof k, i, "radius"), NULL, &r, err));
-        s = ry_fill_sphere(ps, centre, r, dx, &st, &added, err);
+        long mode, zero_mode = 0;
+        double amp, zero_amp = 0;
+        RY_TRY(ry_case_int(c, key(k, sizeof k, i, "mode"), &zero_mode, 0, 16, &mode, err));
+        RY_TRY(
+            ry_case_double(c, key(k, sizeof k, i, "amplitude"), &zero_amp, -0.5, 0.5, &amp, err));
+        RY_CHECK(err, mode != 1, RY_ERR_INPUT,
+                 "%s: key '%s': mode 1 is a translation, not a shape (0, or 2 to 16)",
+                 ry_case_where(c, key(k, sizeof k, i, "mode"), where, sizeof where), k);
+        if (ry_case_has(c, key(k, sizeof k, i, "amplitude")) && mode == 0) {
+            return ry_error_set(
+                err, RY_ERR_INPUT, "%s: key '%s': amplitude needs a mode (2 to 16)",
+                ry_case_where(c, key(k, sizeof k, i, "amplitude"), where, sizeof where), k);
+        }
+        s = ry_fill_sphere_mode(ps, centre, r, (int)mode, amp, dx, &st, &added, err);
         break;
     }
     case BODY_CYLINDER: {

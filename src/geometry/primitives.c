@@ -95,25 +95,57 @@ ry_status ry_fill_box_wave(ry_particles *ps, const double *lo, const double *hi,
 }
 
 typedef struct sphere_ctx {
-    int dim;
-    double c[3], r2;
+    int dim, mode;
+    double c[3], r2, r, eps;
 } sphere_ctx;
+
+/* P_n(x) (3D) or T_n(x) = cos(n acos x) (2D) by their three-term recurrences. */
+static double shape_poly(int dim, int n, double x) {
+    double a = 1, b = x;
+    if (n == 0) return a;
+    for (int k = 1; k < n; ++k) {
+        const double c = dim > 2 ? ((2 * k + 1) * x * b - k * a) / (k + 1) : 2 * x * b - a;
+        a = b;
+        b = c;
+    }
+    return b;
+}
 
 static int inside_sphere(const double *p, const void *ctx) {
     const sphere_ctx *s = ctx;
     double r2 = 0;
     for (int d = 0; d < s->dim; ++d) r2 += (p[d] - s->c[d]) * (p[d] - s->c[d]);
-    return r2 <= s->r2;
+    if (s->mode == 0) return r2 <= s->r2;
+    const int up = s->dim - 1;
+    const double r = sqrt(r2), x = r > 0 ? (p[up] - s->c[up]) / r : 1.0;
+    return r <= s->r * (1 + s->eps * shape_poly(s->dim, s->mode, x));
 }
 
 ry_status ry_fill_sphere(ry_particles *ps, const double *centre, double radius, double dx,
                          const ry_body_style *st, size_t *added, ry_error *err) {
+    return ry_fill_sphere_mode(ps, centre, radius, 0, 0.0, dx, st, added, err);
+}
+
+ry_status ry_fill_sphere_mode(ry_particles *ps, const double *centre, double radius, int mode,
+                              double amplitude, double dx, const ry_body_style *st, size_t *added,
+                              ry_error *err) {
     RY_CHECK(err, radius > 0, RY_ERR_INPUT, "sphere: radius must be > 0");
-    sphere_ctx s = {.dim = ps->dim, .r2 = radius * radius};
+    RY_CHECK(err, mode == 0 || (mode >= 2 && mode <= 16), RY_ERR_INPUT,
+             "sphere: mode must be 0 or 2 to 16");
+    RY_CHECK(err, fabs(amplitude) <= 0.5, RY_ERR_INPUT,
+             "sphere: amplitude must lie within [-0.5, 0.5]");
+    /* The radius of the perturbed surface, R0 (1 + eps Y), scaled so that the body holds the
+     * volume of the sphere of the given radius to second order in eps: the mean of Y^2 over the
+     * surface is 1/(2n + 1) (3D, Legendre) or 1/2 (2D, cosine). */
+    const double eps = mode ? amplitude : 0.0;
+    const double scale = ps->dim > 2 ? cbrt(1.0 / (1.0 + 3.0 * eps * eps / (2 * mode + 1)))
+                                     : 1.0 / sqrt(1.0 + 0.5 * eps * eps);
+    sphere_ctx s = {
+        .dim = ps->dim, .mode = mode, .r2 = radius * radius, .r = radius * scale, .eps = eps};
     double lo[3] = {0, 0, 0};
     long n[3] = {1, 1, 1};
     /* A lattice centred on the sphere's centre (points symmetric about it). */
-    long m = lattice_span(radius / dx) + 1;
+    long m = lattice_span(radius * (1 + fabs(eps)) / dx) + 1;
     for (int d = 0; d < ps->dim; ++d) {
         s.c[d] = centre[d];
         lo[d] = centre[d] - m * dx;

@@ -31,6 +31,12 @@ static ry_status probe_shape_m4(const ry_sim *sim, double *v, ry_error *err) {
     return RY_OK;
 }
 
+static ry_status probe_shape_p2(const ry_sim *sim, double *v, ry_error *err) {
+    (void)err;
+    *v = ry_particles_shape_p2(&sim->ps, sim->dim, RY_KIND_FLUID, sim->dx);
+    return RY_OK;
+}
+
 static ry_status probe_max_speed(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
     const ry_particles *ps = &sim->ps;
@@ -425,10 +431,9 @@ static int near_port_axis(const ry_sim *sim, size_t i) {
 /* Wall wetted by the injected fluid: among the wall particles with a fluid particle within the
  * kernel support (the wetted wall, e.g. the retina), the fraction whose nearest fluid particle
  * is of the second material (the injected fluid, e.g. silicone oil). Wall particles of the
- * ports (near_port_axis) do not count. Searches cells of its own (current_cells). */
-static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *err) {
-    RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
-             "measurement 'oil_wall_contact' needs two materials (the second is the injected one)");
+ * ports (near_port_axis) do not count, nor, with a region, those outside it. Searches cells of
+ * its own (current_cells). */
+static ry_status wall_contact(const ry_sim *sim, const ry_region *reg, double *v, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const double rad2 = sim->kernel.radius * sim->kernel.radius;
     ry_cell_list cl;
@@ -438,6 +443,15 @@ static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *
     size_t wet = 0, oil = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_WALL || near_port_axis(sim, i)) continue;
+        if (reg) {
+            double c = 0, r2 = 0;
+            for (int d = 0; d < 3; ++d) {
+                const double e = x[d][i] - reg->centre[d];
+                c += e * reg->dir[d];
+                r2 += e * e;
+            }
+            if (!(r2 > 0) || c < reg->cos_half * sqrt(r2)) continue;
+        }
         double best = rad2;
         int mat = -1;
         size_t cells[27];
@@ -462,6 +476,87 @@ static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *
     ry_cells_free(&cl);
     *v = wet ? (double)oil / (double)wet : 0.0;
     return RY_OK;
+}
+
+static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *err) {
+    RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
+             "measurement 'oil_wall_contact' needs two materials (the second is the injected one)");
+    return wall_contact(sim, NULL, v, err);
+}
+
+/* coverage_NAME: oil_wall_contact over the wall particles of retina region `item`. */
+static ry_status probe_region_coverage(const ry_sim *sim, int item, double *v, ry_error *err) {
+    RY_CHECK(err, item >= 0 && item < sim->nregions, RY_ERR_INTERNAL, "no retina region %d", item);
+    return wall_contact(sim, &sim->regions[item], v, err);
+}
+
+/* The case section `retina_regions`: each item's name, direction, half angle [degrees] and
+ * centre (default the origin); its probe coverage_NAME. */
+ry_status ry_regions_setup(ry_sim *sim, ry_case *c, ry_error *err) {
+    size_t n = 0;
+    if (!ry_case_has(c, "retina_regions")) return RY_OK;
+    RY_TRY(ry_case_count(c, "retina_regions", &n, err));
+    char k[96], where[256];
+    RY_CHECK(err, sim->dim == 3 && sim->nmat >= 2 && n <= 64, RY_ERR_INPUT,
+             "%s: key 'retina_regions': needs dimension 3 and two materials (the second the "
+             "injected one), and at most 64 regions",
+             ry_case_where(c, "retina_regions", where, sizeof where));
+    sim->regions = calloc(n ? n : 1, sizeof *sim->regions);
+    RY_CHECK(err, sim->regions != NULL, RY_ERR_NOMEM, "out of memory");
+    for (size_t r = 0; r < n; ++r) {
+        ry_region *g = &sim->regions[r];
+        const char *name;
+        double zero[3] = {0, 0, 0}, half, nd = 0;
+        snprintf(k, sizeof k, "retina_regions[%zu].name", r);
+        RY_TRY(ry_case_string(c, k, NULL, &name, err));
+        RY_CHECK(err,
+                 name[0] && strlen(name) < 48 &&
+                     strspn(name, "abcdefghijklmnopqrstuvwxyz"
+                                  "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                  "0123456789_") == strlen(name),
+                 RY_ERR_INPUT,
+                 "%s: key '%s': a region's name is 1 to 47 letters, digits or '_' (it names "
+                 "the column coverage_NAME)",
+                 ry_case_where(c, k, where, sizeof where), k);
+        for (size_t q = 0; q < r; ++q)
+            RY_CHECK(err, strcmp(sim->regions[q].name, name) != 0, RY_ERR_INPUT,
+                     "%s: key '%s': region '%s' is named twice",
+                     ry_case_where(c, k, where, sizeof where), k, name);
+        snprintf(k, sizeof k, "retina_regions[%zu].direction", r);
+        RY_TRY(ry_case_vector(c, k, NULL, 3, g->dir, err));
+        for (int d = 0; d < 3; ++d) nd += g->dir[d] * g->dir[d];
+        RY_CHECK(err, nd > 0, RY_ERR_INPUT, "%s: key '%s': the direction must not be zero",
+                 ry_case_where(c, k, where, sizeof where), k);
+        for (int d = 0; d < 3; ++d) g->dir[d] /= sqrt(nd);
+        snprintf(k, sizeof k, "retina_regions[%zu].half_angle", r);
+        RY_TRY(ry_case_double(c, k, NULL, 0.0, 180.0, &half, err));
+        RY_CHECK(err, half > 0, RY_ERR_INPUT, "%s: key '%s': must be > 0 degrees",
+                 ry_case_where(c, k, where, sizeof where), k);
+        g->cos_half = cos(half * 3.14159265358979323846 / 180.0);
+        snprintf(k, sizeof k, "retina_regions[%zu].centre", r);
+        RY_TRY(ry_case_vector(c, k, zero, 3, g->centre, err));
+        const size_t len = strlen(name);
+        g->name = malloc(2 * len + 16);
+        RY_CHECK(err, g->name != NULL, RY_ERR_NOMEM, "out of memory");
+        memcpy(g->name, name, len + 1);
+        char *column = g->name + len + 1; /* coverage_NAME, in the same block */
+        snprintf(column, len + 15, "coverage_%s", name);
+        g->probe = (ry_probe){column, "share of the region's wetted wall the injected fluid covers",
+                              NULL, probe_region_coverage, (int)r};
+        sim->nregions = (int)r + 1;
+    }
+    return RY_OK;
+}
+
+void ry_regions_free(ry_sim *sim) {
+    for (int r = 0; r < sim->nregions; ++r) free(sim->regions[r].name);
+    free(sim->regions);
+    sim->regions = NULL;
+    sim->nregions = 0;
+}
+
+ry_status ry_probe_eval(const ry_probe *p, const ry_sim *sim, double *value, ry_error *err) {
+    return p->eval ? p->eval(sim, value, err) : p->eval_item(sim, p->item, value, err);
 }
 
 /* A standing wave (2D): the top surface of the densest fluid material (with air above water:
@@ -557,77 +652,87 @@ static ry_status probe_iisph_iters_mean(const ry_sim *sim, double *v, ry_error *
     return RY_OK;
 }
 
-static const ry_probe p_mass = {"mass", "total fluid mass [kg]", probe_mass};
-static const ry_probe p_inflow = {
-    "inflow_volume", "volume that entered through inlets [m^3] (particles x dx^dim)", probe_inflow};
-static const ry_probe p_outflow = {
-    "outflow_volume", "volume that left through outlets [m^3] (particles x dx^dim)", probe_outflow};
+static const ry_probe p_mass = {"mass", "total fluid mass [kg]", probe_mass, NULL, 0};
+static const ry_probe p_inflow = {"inflow_volume",
+                                  "volume that entered through inlets [m^3] (particles x dx^dim)",
+                                  probe_inflow, NULL, 0};
+static const ry_probe p_outflow = {"outflow_volume",
+                                   "volume that left through outlets [m^3] (particles x dx^dim)",
+                                   probe_outflow, NULL, 0};
 static const ry_probe p_nfluid = {"fluid_particles", "number of fluid particles",
-                                  probe_fluid_particles};
-static const ry_probe p_kin = {"kinetic_energy", "fluid kinetic energy [J]", probe_kinetic};
+                                  probe_fluid_particles, NULL, 0};
+static const ry_probe p_kin = {"kinetic_energy", "fluid kinetic energy [J]", probe_kinetic, NULL,
+                               0};
 static const ry_probe p_shape_m4 = {
     "shape_m4",
     "fourth-order shape moment of the fluid about its centroid, <x^4+y^4+z^4>/<r^4> - 3/5 (2D: "
     "<x^4+y^4>/<r^4> - 3/4), of the particles within twice the equivalent radius: 0 for a "
     "sphere or circle, -0.126 for a cube, -0.107 for a square",
-    probe_shape_m4};
-static const ry_probe p_vmax = {"max_speed", "largest fluid speed [m/s]", probe_max_speed};
+    probe_shape_m4, NULL, 0};
+static const ry_probe p_shape_p2 = {
+    "shape_p2",
+    "second-order (mode-2) shape moment of the fluid about its centroid, <z^2 - (x^2+y^2)/2>/<r^2> "
+    "(2D: <y^2 - x^2>/(2 <r^2>)), of the particles within twice the equivalent radius: 0 for a "
+    "sphere or circle, eps for a surface at R (1 + eps P_2(cos theta)) (2D: R (1 + eps cos 2 phi), "
+    "phi from the y axis)",
+    probe_shape_p2, NULL, 0};
+static const ry_probe p_vmax = {"max_speed", "largest fluid speed [m/s]", probe_max_speed, NULL, 0};
 static const ry_probe p_tau_max = {
     "max_polymer_stress", "largest size of the polymer stress sqrt(tau : tau) over the fluid [Pa]",
-    probe_max_polymer_stress};
-static const ry_probe p_out = {"outside", "particles outside the domain", probe_outside};
+    probe_max_polymer_stress, NULL, 0};
+static const ry_probe p_out = {"outside", "particles outside the domain", probe_outside, NULL, 0};
 static const ry_probe p_front = {"front_x", "surge front position [m] (leading edge on the floor)",
-                                 probe_front_x};
+                                 probe_front_x, NULL, 0};
 static const ry_probe p_in_wall = {
     "in_wall", "fluid particles inside a wall (within dx/2 of a wall particle in every direction)",
-    probe_in_wall};
+    probe_in_wall, NULL, 0};
 static const ry_probe p_iters = {"iisph_iterations",
                                  "scheme iisph: pressure-solve iterations of the last step",
-                                 probe_iisph_iters};
+                                 probe_iisph_iters, NULL, 0};
 static const ry_probe p_iters_mean = {
     "iisph_iterations_mean", "scheme iisph: mean pressure-solve iterations per step so far",
-    probe_iisph_iters_mean};
+    probe_iisph_iters_mean, NULL, 0};
 static const ry_probe p_filled = {
     "filled_fraction", "fluid particles of the second (injected) material over all fluid particles",
-    probe_filled_fraction};
+    probe_filled_fraction, NULL, 0};
 static const ry_probe p_oil_wall = {
     "oil_wall_contact",
     "fraction of the wetted wall (without the ports' channels and collars) whose nearest fluid "
     "particle is of the second material",
-    probe_oil_wall_contact};
+    probe_oil_wall_contact, NULL, 0};
 static const ry_probe p_interface = {
     "interface_amplitude",
     "2D, two fluids in a box one wavelength wide: amplitude of the interface mode "
     "cos(2 pi x / width) [m]",
-    probe_interface_amplitude};
+    probe_interface_amplitude, NULL, 0};
 static const ry_probe p_wave = {
     "wave_amplitude",
     "2D: amplitude of the mode cos(2 pi x / width) of the top surface of the densest fluid [m]",
-    probe_wave_amplitude};
+    probe_wave_amplitude, NULL, 0};
 static const ry_probe p_droplet_length = {
     "droplet_length",
     "section droplet: vertical extent of the droplet attached to the nozzle below its tip [m]",
-    probe_droplet_length};
+    probe_droplet_length, NULL, 0};
 static const ry_probe p_droplet_width = {
     "droplet_width", "section droplet: largest horizontal extent of that droplet [m]",
-    probe_droplet_width};
+    probe_droplet_width, NULL, 0};
 static const ry_probe p_droplet_aspect = {
-    "droplet_aspect", "section droplet: droplet length / width", probe_droplet_aspect};
+    "droplet_aspect", "section droplet: droplet length / width", probe_droplet_aspect, NULL, 0};
 static const ry_probe p_droplet_detached = {
     "droplet_detached",
     "section droplet: 1 once a body of the material (10 particles or more) lies wholly below "
     "the tip, disconnected from the nozzle; else 0",
-    probe_droplet_detached};
+    probe_droplet_detached, NULL, 0};
 static const ry_probe p_droplet_volume = {
     "droplet_volume",
     "section droplet: volume of the attached droplet below the tip (its particles times dx^dim) "
     "[m^3, m^2 in 2D]",
-    probe_droplet_volume};
+    probe_droplet_volume, NULL, 0};
 static const ry_probe p_droplet_offset = {
     "droplet_offset",
     "section droplet: horizontal distance from the nozzle's axis (droplet.axis) to the centroid "
     "of the attached droplet below the tip [m]",
-    probe_droplet_offset};
+    probe_droplet_offset, NULL, 0};
 
 static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_filled,
@@ -638,6 +743,7 @@ static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_iters_mean,
                                              &p_kin,
                                              &p_shape_m4,
+                                             &p_shape_p2,
                                              &p_vmax,
                                              &p_tau_max,
                                              &p_out,

@@ -279,31 +279,31 @@ const ry_probe ry_probe_width_x = {
     "width_x",
     "drop width along x through the fluid's centroid [m] (the body within 1.5 spacings of the "
     "axis, particles thrown off left out, plus one spacing)",
-    probe_width_x};
+    probe_width_x, NULL, 0};
 const ry_probe ry_probe_width_x_second = {
     "width_x_second",
     "width along x through its centroid of the second material's body (as width_x) [m]",
-    probe_width_x_second};
+    probe_width_x_second, NULL, 0};
 const ry_probe ry_probe_drop_pressure = {
     "drop_pressure",
     "mean pressure of the fluid within half the equivalent radius of its centroid [Pa]",
-    probe_drop_pressure};
+    probe_drop_pressure, NULL, 0};
 const ry_probe ry_probe_pressure_jump_second = {
     "pressure_jump_second",
     "drop of the second material in the first: mean pressure within half its equivalent radius "
     "of its centroid less the first material's beyond 5 spacings outside it [Pa]",
-    probe_pressure_jump_second};
+    probe_pressure_jump_second, NULL, 0};
 const ry_probe ry_probe_contact_angle = {
     "contact_angle",
     "sessile drop on a floor: contact angle [degrees] of a circle (sphere) fitted to the free "
     "surface more than two spacings above the floor",
-    probe_contact_angle};
+    probe_contact_angle, NULL, 0};
 const ry_probe ry_probe_contact_angle_second = {
     "contact_angle_second",
     "sessile drop of the second material in the first, on a floor: contact angle [degrees] "
     "through the drop, of a circle (sphere) fitted to its particles beside the first liquid "
     "more than two spacings above the floor",
-    probe_contact_angle_second};
+    probe_contact_angle_second, NULL, 0};
 const ry_probe ry_probe_ppe_iterations = {
     "ppe_iterations", "scheme mps: conjugate-gradient iterations of the last pressure solve",
-    probe_ppe_iterations};
+    probe_ppe_iterations, NULL, 0};

@@ -86,18 +86,18 @@ static ry_status probe_strain_energy(const ry_sim *sim, double *v, ry_error *err
 
 const ry_probe ry_probe_tip_deflection = {
     "tip_deflection", "beam: displacement of the free end of the centreline along the load [m]",
-    probe_tip_deflection};
+    probe_tip_deflection, NULL, 0};
 const ry_probe ry_probe_tip_axial = {
     "tip_axial", "beam: displacement of the free end of the centreline along x [m]",
-    probe_tip_axial};
+    probe_tip_axial, NULL, 0};
 const ry_probe ry_probe_residual = {
     "residual", "solid: relative residual |f + f_ext| / |f_ext| of the last force evaluation",
-    probe_residual};
+    probe_residual, NULL, 0};
 const ry_probe ry_probe_solid_kinetic_energy = {
-    "solid_kinetic_energy", "kinetic energy of the solid particles [J]", probe_solid_ke};
+    "solid_kinetic_energy", "kinetic energy of the solid particles [J]", probe_solid_ke, NULL, 0};
 const ry_probe ry_probe_strain_energy = {
     "strain_energy", "elastic energy stored in the solid and clamped particles [J]",
-    probe_strain_energy};
+    probe_strain_energy, NULL, 0};
 
 static ry_status probe_min_spacing(const ry_sim *sim, double *v, ry_error *err) {
     (void)err;
@@ -106,4 +106,4 @@ static ry_status probe_min_spacing(const ry_sim *sim, double *v, ry_error *err) 
 }
 const ry_probe ry_probe_min_spacing = {
     "min_spacing", "solid: smallest distance between neighbouring particles, in initial spacings",
-    probe_min_spacing};
+    probe_min_spacing, NULL, 0};

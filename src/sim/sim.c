@@ -171,12 +171,13 @@ static ry_status read_probes(ry_sim *sim, ry_case *c, ry_error *err) {
     size_t n;
     char k[64];
     RY_TRY(read_droplet(sim, c, err));
+    RY_TRY(ry_regions_setup(sim, c, err));
     RY_TRY(ry_case_count(c, "measure", &n, err));
     const ry_probe *const *all = ry_probes();
     int count = 0;
     while (all[count]) ++count;
     const char **names = calloc((size_t)count + 1, sizeof *names);
-    sim->probes = calloc(n + 1, sizeof *sim->probes);
+    sim->probes = calloc(n + (size_t)sim->nregions + 1, sizeof *sim->probes);
     if (!names || !sim->probes) {
         free(names);
         return ry_error_set(err, RY_ERR_NOMEM, "out of memory");
@@ -191,6 +192,8 @@ static ry_status read_probes(ry_sim *sim, ry_case *c, ry_error *err) {
     }
     free(names);
     RY_TRY(st);
+    /* each retina region's coverage, after the measurements listed */
+    for (int r = 0; r < sim->nregions; ++r) sim->probes[sim->nprobes++] = &sim->regions[r].probe;
     return read_stop_when(sim, c, err);
 }
 
@@ -200,7 +203,7 @@ static ry_status read_probes(ry_sim *sim, ry_case *c, ry_error *err) {
 static ry_status check_probes(ry_sim *sim, ry_case *c, ry_error *err) {
     for (int k = 0; k < sim->nprobes; ++k) {
         double v;
-        const ry_status st = sim->probes[k]->eval(sim, &v, err);
+        const ry_status st = ry_probe_eval(sim->probes[k], sim, &v, err);
         if (st != RY_ERR_INPUT) {
             RY_TRY(st);
             continue;
@@ -294,6 +297,18 @@ static const char *base_name(const char *path, char *buf, size_t size) {
     return buf;
 }
 
+/* The head positions of the eye cases and the direction of gravity in the eye's frame (x towards
+ * the patient's left, y superior, z anterior). */
+static const char *const pos_names[] = {"upright",   "supine",     "prone",
+                                        "left_side", "right_side", NULL};
+static const double head_dir[5][3] = {{0, -1, 0}, {0, 0, -1}, {0, 0, 1}, {1, 0, 0}, {-1, 0, 0}};
+
+const char *ry_head_position(int k, double down[3]) {
+    if (k < 0 || k >= 5) return NULL;
+    for (int d = 0; d < 3; ++d) down[d] = head_dir[k][d];
+    return pos_names[k];
+}
+
 ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *err) {
     memset(sim, 0, sizeof *sim);
     long dim;
@@ -313,16 +328,13 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     if (ry_case_has(c, "head_position")) {
         /* Patient head position (eye cases, 3D): gravity 9.81 m/s^2 in the eye's frame, x
          * towards the patient's left, y superior, z anterior (out of the pupil). */
-        static const char *const pos_names[] = {"upright",   "supine",     "prone",
-                                                "left_side", "right_side", NULL};
-        static const double dir[5][3] = {{0, -1, 0}, {0, 0, -1}, {0, 0, 1}, {1, 0, 0}, {-1, 0, 0}};
         int pos;
         char where[256];
         RY_CHECK(err, sim->dim == 3 && !ry_case_has(c, "gravity"), RY_ERR_INPUT,
                  "%s: key 'head_position': needs dimension 3 and no 'gravity' key",
                  ry_case_where(c, "head_position", where, sizeof where));
         RY_TRY(ry_case_choice(c, "head_position", NULL, pos_names, &pos, err));
-        for (int d = 0; d < 3; ++d) sim->gravity[d] = 9.81 * dir[pos][d];
+        for (int d = 0; d < 3; ++d) sim->gravity[d] = 9.81 * head_dir[pos][d];
     } else {
         RY_TRY(ry_case_vector(c, "gravity", zero, sim->dim, sim->gravity, err));
     }
@@ -412,6 +424,7 @@ void ry_sim_free(ry_sim *sim) {
     free(sim->mat);
     free(sim->body_first_id);
     free(sim->probes);
+    ry_regions_free(sim);
     ry_profiles_free(sim);
     ry_sim_snapshot_free(sim);
     free(sim->open);

@@ -158,7 +158,7 @@ ry_status ry_output_write(ry_sim *sim, ry_error *err) {
     RY_TRY(csv_append(w, err, "%.10g,%ld,%.6g,%zu", sim->t, sim->step, sim->dt, sim->ps.n));
     for (int k = 0; k < sim->nprobes; ++k) {
         double v;
-        RY_TRY(sim->probes[k]->eval(sim, &v, err));
+        RY_TRY(ry_probe_eval(sim->probes[k], sim, &v, err));
         RY_TRY(csv_append(w, err, ",%.12g", v));
         if (k == sim->stop_probe && (sim->stop_above ? v > sim->stop_value : v < sim->stop_value)) {
             sim->finished = 1;

@@ -152,3 +152,40 @@ ry_status ry_tamponade_solve(double fill, double theta, double bond, ry_tamponad
     *out = t;
     return RY_OK;
 }
+
+/* A cone of the wall about the unit direction d (half angle h) in the frame where `up` (unit)
+ * points against gravity: the oil covers the wall where p.up >= z_contact. Over the cone, at
+ * angle a from d and azimuth b, p.up = A cos a + B sin a cos(b - b0) (A = d.up, B the size of
+ * up's part normal to d), so the covered share of each ring is acos(c) / pi with
+ * c = (z_contact - A cos a) / (B sin a) clamped to [-1, 1]; the rings are summed with their area
+ * sin a da by Simpson's rule. */
+double ry_tamponade_region_coverage(const ry_tamponade *t, const double up[3], const double d[3],
+                                    double half_angle) {
+    double A = 0;
+    for (int k = 0; k < 3; ++k) A += d[k] * up[k];
+    const double B = sqrt(fmax(0.0, 1.0 - A * A));
+    if (B < 1e-12) { /* a cone about the vertical: the rings are wholly wet or dry */
+        const double cz = A > 0 ? t->z_contact : -t->z_contact, c = cos(half_angle);
+        const double lim = half_angle <= 0 ? 0 : 1 - c;
+        if (!(lim > 0)) return A * 1.0 >= t->z_contact ? 1.0 : 0.0;
+        /* A = 1: wet where cos a >= z_c; A = -1: where cos a <= -z_c */
+        const double edge = fmin(fmax(cz, c), 1.0);
+        return A > 0 ? (1 - edge) / lim : (edge - c) / lim;
+    }
+    enum { N = 2000 };
+    double cov = 0, area = 0;
+    for (int i = 0; i <= N; ++i) {
+        const double a = half_angle * i / N, w = (i == 0 || i == N) ? 1 : (i % 2 ? 4 : 2);
+        const double s = sin(a), h = t->z_contact - A * cos(a);
+        double share;
+        if (B * s <= 0)
+            share = h <= 0 ? 1.0 : 0.0;
+        else {
+            const double c = h / (B * s);
+            share = c <= -1 ? 1.0 : c >= 1 ? 0.0 : acos(c) / PI;
+        }
+        cov += w * s * share;
+        area += w * s;
+    }
+    return area > 0 ? cov / area : (A >= t->z_contact ? 1.0 : 0.0);
+}

@@ -100,6 +100,32 @@ static void test_eye_values(void **state) {
     }
 }
 
+/* Region coverage (ry_tamponade_region_coverage) against what the sphere's symmetry gives: the
+ * whole sphere and any hemisphere about a horizontal direction carry the covered share
+ * (1 - z_c)/2 (the contact line a circle of latitude about `up`); a cone about `up` narrower
+ * than the dry cap's complement is covered wholly, one about `down` within the dry cap not at
+ * all; cones about opposite horizontal directions agree (to 1e-6, Simpson's rule's error). */
+static void test_region_coverage(void **state) {
+    (void)state;
+    ry_tamponade t;
+    ry_error err = {0};
+    assert_int_equal(ry_tamponade_solve(0.8, 18 * PI / 180, 1.06, &t, &err), RY_OK);
+    const double up[3] = {0, 1, 0}, down[3] = {0, -1, 0}, x[3] = {1, 0, 0}, mx[3] = {-1, 0, 0},
+                 z[3] = {0, 0, 1}, tilt[3] = {0.6, 0, 0.8};
+    const double half = (1 - t.z_contact) / 2;
+    assert_true(fabs(t.coverage - half) < 1e-9);
+    assert_true(fabs(ry_tamponade_region_coverage(&t, up, up, PI) - half) < 1e-6);
+    assert_true(fabs(ry_tamponade_region_coverage(&t, up, x, PI / 2) - half) < 1e-6);
+    assert_true(fabs(ry_tamponade_region_coverage(&t, up, tilt, PI / 2) - half) < 1e-6);
+    const double a = acos(t.z_contact); /* the oil's cap about up */
+    assert_true(ry_tamponade_region_coverage(&t, up, up, 0.99 * a) == 1.0);
+    assert_true(ry_tamponade_region_coverage(&t, up, down, 0.99 * (PI - a)) == 0.0);
+    assert_true(fabs(ry_tamponade_region_coverage(&t, up, x, PI / 4) -
+                     ry_tamponade_region_coverage(&t, up, mx, PI / 4)) < 1e-12);
+    assert_true(fabs(ry_tamponade_region_coverage(&t, up, z, PI / 4) -
+                     ry_tamponade_region_coverage(&t, up, x, PI / 4)) < 1e-12);
+}
+
 static void test_bad_input(void **state) {
     (void)state;
     ry_tamponade t;
@@ -114,7 +140,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_flat_interface),      cmocka_unit_test(test_zero_bond_lens),
         cmocka_unit_test(test_large_bond_flattens), cmocka_unit_test(test_eye_values),
-        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_region_coverage),     cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
