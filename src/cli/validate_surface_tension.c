@@ -32,6 +32,7 @@ static double mode2_period(int dim, size_t n, double l0) {
 
 typedef struct drop_result {
     double T0, T, decay, amp, rms;
+    double stopped; /* the time the run went unstable at [s] (NAN: it ran to its end) */
     size_t n;
     long steps;
     double wall;
@@ -42,7 +43,7 @@ typedef struct drop_result {
  * multiples of it), the fit of shape_p2 from a quarter of the reference period on. */
 static drop_result run_drop(const char *root, const char *out, int dim, double l0, double dt,
                             ry_plot *plot, int panel, int color, int dashed) {
-    drop_result r = {NAN, NAN, NAN, NAN, NAN, 0, 0, NAN, 0};
+    drop_result r = {NAN, NAN, NAN, NAN, NAN, NAN, 0, 0, NAN, 0};
     char cpath[4096], odir[4096], spath[4200], sp[64], st[64], sub[96];
     snprintf(cpath, sizeof cpath, "%s/cases/drop_oscillation_%dd.yaml", root, dim);
     snprintf(sub, sizeof sub, "drop_oscillation_%dd_%.4g_%.3g", dim, l0, dt);
@@ -69,7 +70,10 @@ static drop_result run_drop(const char *root, const char *out, int dim, double l
     }
     const int cn = ry_table_col(&s, "fluid_particles"), cs = ry_table_col(&s, "step");
     r.n = cn >= 0 && s.nrows ? (size_t)ry_table_at(&s, 0, cn) : 0;
-    if (!finished && cs >= 0 && s.nrows) r.steps = (long)ry_table_at(&s, s.nrows - 1, cs);
+    if (!finished && cs >= 0 && s.nrows) {
+        r.steps = (long)ry_table_at(&s, s.nrows - 1, cs);
+        r.stopped = ry_table_at(&s, s.nrows - 1, ry_table_col(&s, "t"));
+    }
     r.T0 = mode2_period(dim, r.n, l0);
     const ry_oscillation_fit f =
         ry_fit_oscillation(&s, "shape_p2", 0.25 * r.T0, INFINITY, 0.5 * r.T0, 2.0 * r.T0, 2000.0);
@@ -125,16 +129,20 @@ int ry_cli_validate_surface_tension(const char *root, const char *out, int quick
             for (int b = 0; b < 2; ++b) {
                 r[b] = run_drop(root, out, dim, l0s[a], dts[a][b], plot, k, 2 * a + b, b);
                 const double e = r[b].T / r[b].T0 - 1;
-                printf("  %-4s %6d %9zu %9.3g %8.3f %8.3f %+7.2f%% %8.1f %8.4f %8.4f %7ld %8.1f\n",
-                       dim == 2 ? "2D" : "3D", (int)lround(2e-3 / l0s[a]), r[b].n, dts[a][b],
-                       1e3 * r[b].T0, 1e3 * r[b].T, 100 * e, r[b].decay, r[b].amp, r[b].rms,
-                       r[b].steps, r[b].wall);
+                char note[64] = "";
+                if (isfinite(r[b].stopped))
+                    snprintf(note, sizeof note, " (unstable at %.1f ms)", 1e3 * r[b].stopped);
+                printf(
+                    "  %-4s %6d %9zu %9.3g %8.3f %8.3f %+7.2f%% %8.1f %8.4f %8.4f %7ld %8.1f%s\n",
+                    dim == 2 ? "2D" : "3D", (int)lround(2e-3 / l0s[a]), r[b].n, dts[a][b],
+                    1e3 * r[b].T0, 1e3 * r[b].T, 100 * e, r[b].decay, r[b].amp, r[b].rms,
+                    r[b].steps, r[b].wall, note);
                 if (md)
                     fprintf(md,
-                            "| %dD | %d | %zu | %.3g | %.3f | %.3f | %+.2f %% | %.1f | %.4f | "
+                            "| %dD | %d | %zu | %.3g | %.3f | %.3f%s | %+.2f %% | %.1f | %.4f | "
                             "%.4f | %ld | %.1f |\n",
                             dim, (int)lround(2e-3 / l0s[a]), r[b].n, dts[a][b], 1e3 * r[b].T0,
-                            1e3 * r[b].T, 100 * e, r[b].decay, r[b].amp, r[b].rms, r[b].steps,
+                            1e3 * r[b].T, note, 100 * e, r[b].decay, r[b].amp, r[b].rms, r[b].steps,
                             r[b].wall);
             }
             char what[200];
@@ -162,8 +170,8 @@ int ry_cli_validate_surface_tension(const char *root, const char *out, int quick
         ry_plot_style ref = ry_plot_style_line();
         ref.color = 7;
         ref.dash = RY_PLOT_DASH_DASHED;
-        ry_plot_series(plot, k, dim == 2 ? "Rayleigh, undamped" : "Lamb, undamped", NT, tt, yy,
-                       ref, &err);
+        ry_plot_series(plot, k, dim == 2 ? "Rayleigh, undamped" : "Lamb, undamped", NT, tt, yy, ref,
+                       &err);
         ry_plot_legend(plot, k, RY_PLOT_LEGEND_NE, &err);
     }
     if (md) fclose(md);

@@ -74,6 +74,35 @@ static ry_status fill_stl_body(ry_particles *ps, ry_case *c, const stl_body *b, 
     return s;
 }
 
+/* bodies[i].half_space {normal, offset}: of the body's particles just added (the last *added),
+ * only those with normal . x >= offset stay (normal made unit): a liquid filled up to a level. */
+static ry_status cut_half_space(ry_particles *ps, ry_case *c, size_t i, size_t *added,
+                                ry_error *err) {
+    char k[96], where[256];
+    double nrm[3] = {0, 0, 0}, off, nn = 0;
+    RY_TRY(ry_case_vector(c, key(k, sizeof k, i, "half_space.normal"), NULL, ps->dim, nrm, err));
+    for (int d = 0; d < ps->dim; ++d) nn += nrm[d] * nrm[d];
+    RY_CHECK(err, nn > 0, RY_ERR_INPUT, "%s: key '%s': the normal must not be zero",
+             ry_case_where(c, k, where, sizeof where), k);
+    RY_TRY(ry_case_double(c, key(k, sizeof k, i, "half_space.offset"), NULL, -1e300, 1e300, &off,
+                          err));
+    uint8_t *drop = calloc(ps->n ? ps->n : 1, 1);
+    RY_CHECK(err, drop != NULL, RY_ERR_NOMEM, "out of memory");
+    size_t ndrop = 0;
+    for (size_t q = ps->n - *added; q < ps->n; ++q) {
+        double h = 0;
+        for (int d = 0; d < ps->dim; ++d) h += nrm[d] / sqrt(nn) * ps->f[RY_F_X + d][q];
+        if (h < off) {
+            drop[q] = 1;
+            ++ndrop;
+        }
+    }
+    if (ndrop) ry_particles_remove(ps, drop);
+    free(drop);
+    *added -= ndrop;
+    return RY_OK;
+}
+
 static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
                            const char *const *material_names, int nmat, ry_error *err) {
     char k[96];
@@ -182,6 +211,8 @@ static ry_status read_body(ry_particles *ps, ry_case *c, size_t i, double dx,
     default:
         return ry_error_set(err, RY_ERR_INTERNAL, "unhandled body type %d", type);
     }
+    if (s == RY_OK && ry_case_has(c, key(k, sizeof k, i, "half_space")))
+        s = cut_half_space(ps, c, i, &added, err);
     snprintf(k, sizeof k, "bodies[%zu]", i);
     if (s != RY_OK) {
         ry_error_prefix(err, "%s: body '%s': ", ry_case_where(c, k, where, sizeof where), k);

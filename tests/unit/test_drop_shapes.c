@@ -2,7 +2,8 @@
  * the moment reads the amplitude of the surface R (1 + eps Y_2) to first order (within 10 % at 20
  * spacings per radius, the lattice's steps), 0 for the round drop (to 1e-3) and -eps when the
  * sign is turned; the body holds the round drop's volume (within 2 %, the lattice's); mode 4
- * leaves the mode-2 moment below 0.01; the keys' errors name them. */
+ * leaves the mode-2 moment below 0.01; a body's half_space keeps the side of its plane; the keys'
+ * errors name them. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -77,6 +78,34 @@ static void test_mode2(void **state) {
     }
 }
 
+/* bodies[k].half_space keeps the body's particles on one side of a plane: the circle cut at
+ * y = 0.5 mm keeps those above it, as many as the lattice has there. */
+static void test_half_space(void **state) {
+    (void)state;
+    ry_sim sim;
+    ry_case *c = NULL;
+    ry_error err = {0};
+    size_t n0;
+    double p2;
+    shape(2, "", &p2, &n0);
+    assert_int_equal(setup(&sim, &c, 2, ", half_space: {normal: [0, 2], offset: 5.0e-4}", &err),
+                     RY_OK);
+    size_t above = 0;
+    for (size_t i = 0; i < sim.ps.n; ++i) assert_true(sim.ps.f[RY_F_Y][i] >= 5.0e-4);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+    assert_int_equal(setup(&sim, &c, 2, "", &err), RY_OK);
+    for (size_t i = 0; i < sim.ps.n; ++i) above += sim.ps.f[RY_F_Y][i] >= 5.0e-4;
+    ry_sim_free(&sim);
+    ry_case_free(c);
+    assert_int_equal(setup(&sim, &c, 2, ", half_space: {normal: [0, 2], offset: 5.0e-4}", &err),
+                     RY_OK);
+    assert_int_equal(sim.ps.n, above);
+    assert_true(above > 0 && above < n0);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 static void refused(const char *keys, const char *needle) {
     ry_sim sim;
     ry_case *c = NULL;
@@ -93,11 +122,14 @@ static void test_bad_keys(void **state) {
     refused(", mode: 17", "bodies[0].mode");
     refused(", amplitude: 0.1", "bodies[0].amplitude");
     refused(", mode: 2, amplitude: 0.6", "bodies[0].amplitude");
+    refused(", half_space: {normal: [0, 0], offset: 0}", "bodies[0].half_space.normal");
+    refused(", half_space: {normal: [0, 1]}", "bodies[0].half_space.offset");
 }
 
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mode2),
+        cmocka_unit_test(test_half_space),
         cmocka_unit_test(test_bad_keys),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
