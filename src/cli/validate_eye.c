@@ -120,7 +120,7 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
  * Williams & Wong 1994); the retina's covered share at fills 0.5 to 0.95, and that of each of
  * the case's retina regions in each head position at fills 0.8 and 0.9. A table on stdout and
  * in eye_equilibrium.md; no check (the reference of the simulations at rest). */
-static void eye_equilibrium(const char *root, const char *out, int *failures) {
+static double eye_equilibrium(const char *root, const char *out, int *failures) {
     ry_error err = {0};
     char path[4096];
     snprintf(path, sizeof path, "%s/cases/eye_sphere.yaml", root);
@@ -140,7 +140,7 @@ static void eye_equilibrium(const char *root, const char *out, int *failures) {
         ry_case_free(c);
         ry_regions_free(&s);
         ry_cli_fail(failures, &err);
-        return;
+        return NAN;
     }
     ry_case_free(c);
     const double bond = (rho_s - rho_o) * g * R * R / sigma;
@@ -212,15 +212,80 @@ static void eye_equilibrium(const char *root, const char *out, int *failures) {
     }
     if (md) fclose(md);
     ry_regions_free(&s);
+    return bond;
+}
+
+/* The oil and saline at rest (cases/eye_rest.yaml, upright, 1.5 mm, 3 s; the full version
+ * also the fill of 0.9): the retina covered at the end against the Young-Laplace equilibrium of
+ * the run's own fill (its lattice's filled fraction) at the contact angle of 18 degrees, and
+ * each region's (bond: the equilibrium's Bond number, eye_equilibrium's). Check: within `tol`
+ * (absolute). */
+static void eye_rest(const char *root, const char *out, int quick, double bond, double tol,
+                     int *failures) {
+    ry_error err = {0};
+    const double offsets[2] = {-0.005109, -0.007301}, nominal[2] = {0.8, 0.9};
+    const double theta = 18.0 * 3.14159265358979323846 / 180.0, up[3] = {0, 1, 0};
+    printf("Eye at rest (cases/eye_rest.yaml, upright, from a flat interface) against the "
+           "equilibrium at 18 degrees:\n");
+    for (int k = 0; k < (quick ? 1 : 2); ++k) {
+        char cpath[4096], odir[4096], off[64], sub[64];
+        snprintf(cpath, sizeof cpath, "%s/cases/eye_rest.yaml", root);
+        snprintf(sub, sizeof sub, "eye_rest_%.1f", nominal[k]);
+        snprintf(odir, sizeof odir, "%s/%s", out, sub);
+        snprintf(off, sizeof off, "bodies[0].half_space.offset=%.10g", offsets[k]);
+        const char *sets[] = {off, "output.vtk=false"};
+        ry_sim sim;
+        ry_run_stats stats;
+        if (ry_run_case_file(cpath, 2, sets, odir, &sim, &stats, &err) != RY_OK) {
+            ry_cli_fail(failures, &err);
+            continue;
+        }
+        size_t nf = 0, noil = 0;
+        for (size_t i = 0; i < sim.ps.n; ++i)
+            if (sim.ps.kind[i] == RY_KIND_FLUID) {
+                ++nf;
+                noil += sim.ps.material[i] == 1;
+            }
+        const double fill = nf ? (double)noil / (double)nf : NAN;
+        ry_tamponade t;
+        double covered = NAN;
+        for (const ry_probe *const *q = ry_probes(); *q; ++q)
+            if (strcmp((*q)->name, "oil_wall_contact") == 0)
+                ry_probe_eval(*q, &sim, &covered, &err);
+        if (ry_tamponade_solve(fill, theta, bond, &t, &err) != RY_OK) {
+            ry_sim_free(&sim);
+            ry_cli_fail(failures, &err);
+            continue;
+        }
+        printf("  fill %.3f (nominal %.1f), %zu particles, %ld steps, %.0f s: retina covered "
+               "%.3f, reference %.3f\n",
+               fill, nominal[k], sim.ps.n, stats.steps, stats.wall_s, covered, t.coverage);
+        for (int r = 0; r < sim.nregions; ++r) {
+            double v = NAN;
+            ry_probe_eval(&sim.regions[r].probe, &sim, &v, &err);
+            printf("    %-16s %.3f, reference %.3f\n", sim.regions[r].name, v,
+                   ry_tamponade_region_coverage(&t, up, sim.regions[r].dir,
+                                                acos(sim.regions[r].cos_half)));
+        }
+        char what[160];
+        snprintf(what, sizeof what,
+                 "eye at rest, fill %.1f, 1.5 mm: retina covered within %g of the equilibrium",
+                 nominal[k], tol);
+        ry_cli_check_figure(what, fabs(covered - t.coverage), tol,
+                            fabs(covered - t.coverage) <= tol, failures);
+        ry_sim_free(&sim);
+    }
 }
 
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures) {
     /* the tolerances of validation/eye.yaml */
-    enum { KEPT, FILLED, CONTACT, NTOL };
-    static const char *const keys[NTOL] = {"oil_kept", "filled_fraction_dt", "contact_dt"};
+    enum { KEPT, FILLED, CONTACT, REST, NTOL };
+    static const char *const keys[NTOL] = {"oil_kept", "filled_fraction_dt", "contact_dt",
+                                           "coverage_at_rest"};
     double tol[NTOL];
     if (ry_cli_tolerances(root, "eye", NTOL, keys, tol, failures)) return 1;
-    eye_equilibrium(root, out, failures);
+    const double bond = eye_equilibrium(root, out, failures);
+    if (isfinite(bond)) eye_rest(root, out, quick, bond, tol[REST], failures);
     ry_error err = {0};
     const double tq[2] = {0.05, 0.1}, tf[3] = {0.3, 0.6, 1.0};
     const double *times = quick ? tq : tf;

@@ -26,6 +26,47 @@ double ry_colour_dt(const ry_colour *cf, const ry_sim *sim) {
     return 0.25 * sqrt(rho * h * h * h / (2.0 * 3.14159265358979323846 * cf->sigma));
 }
 
+/* The contact angle (wet): the unit normals of the interface particles beside a wall turned to
+ * meet it at theta (colour_field.h); their sizes kept. Each particle reads its own normal and
+ * the walls' pairs only. */
+static void contact_angle(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc,
+                          const int mobile[RY_KIND_COUNT], double thr) {
+    const ry_particles *ps = &sim->ps;
+    const size_t n = ps->n;
+    const int dim = sim->dim;
+    double *nrm = cf->nrm, *ln = nrm + 3 * n;
+    const double r2max = 2.25 * sim->dx * sim->dx;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; ++i) {
+        if (!mobile[ps->kind[i]] || ln[i] <= thr) continue;
+        double w[3] = {0, 0, 0}, nw = 0, dot = 0, nt = 0, t[3] = {0, 0, 0};
+        int near = 0;
+        for (size_t q = sim->nl.offset[i]; q < pc->end[i]; ++q) {
+            if (ps->kind[pc->j[q]] != RY_KIND_WALL) continue;
+            const double *P = pc->v + q * RY_PAIR_STRIDE;
+            near |= P[RY_PW_R2] < r2max;
+            for (int d = 0; d < dim; ++d) w[d] -= P[RY_PW_GX + d];
+        }
+        if (!near) continue;
+        for (int d = 0; d < dim; ++d) nw += w[d] * w[d];
+        if (!(nw > 0)) continue;
+        nw = sqrt(nw);
+        for (int d = 0; d < dim; ++d) {
+            w[d] /= nw;
+            dot += nrm[3 * i + d] / ln[i] * w[d];
+        }
+        for (int d = 0; d < dim; ++d) {
+            t[d] = nrm[3 * i + d] / ln[i] - dot * w[d];
+            nt += t[d] * t[d];
+        }
+        if (!(nt > 1e-12)) continue; /* the normal along the wall's: no direction along it */
+        nt = sqrt(nt);
+        for (int d = 0; d < dim; ++d)
+            nrm[3 * i + d] = ln[i] * (cf->cos_theta * w[d] + cf->sin_theta * t[d] / nt);
+    }
+    if (sim->par) sim->par->sync(sim, nrm, 3);
+}
+
 ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, const double *delta,
                           const int mobile[RY_KIND_COUNT], double *acc, ry_error *err) {
     ry_particles *ps = &sim->ps;
@@ -84,6 +125,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         const double *ni = nrm + 3 * i;
         ln[i] = sqrt(ni[0] * ni[0] + ni[1] * ni[1] + ni[2] * ni[2]);
     }
+    if (cf->wet) contact_angle(cf, sim, pc, mobile, thr);
     /* Curvature and force. */
     const double sigma = cf->sigma;
 #pragma omp parallel for schedule(dynamic, 64)

@@ -17,7 +17,13 @@
  *               weighted by 2 rho_i / (rho_a + rho_b) (rho_a, rho_b the two reference
  *               densities), so that both phases get the same acceleration
  *               sigma kappa n / rhobar, rhobar = (rho_a + rho_b) / 2: a light phase (air) is not
- *               kicked by the force the heavy side needs. */
+ *               kicked by the force the heavy side needs.
+ *  contact angle (wet) the unit normal of an interface particle with a wall particle within 1.5
+ *               spacings is turned to meet the wall at theta, measured through the phase without
+ *               colour (Brackbill et al. 1992, section 2.3): nh = cos(theta) n_w + sin(theta) t,
+ *               n_w the wall's normal into the fluid (-sum_walls grad_i W_ij, normalised), t the
+ *               normal's part along the wall (normalised); |n| is kept. The curvature, and so
+ *               the force, then bends the interface towards the angle. */
 #ifndef RYUSHI_SPH_MULTIPHASE_H
 #define RYUSHI_SPH_MULTIPHASE_H
 
@@ -25,11 +31,13 @@
 #include "pairs/pair_cache.h"
 
 typedef struct ry_colour {
-    int material;    /* the colour material (c = 1) */
-    double sigma;    /* interfacial tension [N/m] */
-    double eps;      /* normal threshold |n| h > eps */
-    double rho_bar;  /* mean reference density of the two phases */
-    int smoothing;   /* passes of the |n|-weighted curvature average (0: none) */
+    int material;   /* the colour material (c = 1) */
+    double sigma;   /* interfacial tension [N/m] */
+    double eps;     /* normal threshold |n| h > eps */
+    double rho_bar; /* mean reference density of the two phases */
+    int smoothing;  /* passes of the |n|-weighted curvature average (0: none) */
+    int wet;        /* a contact angle at the walls (cos_theta, sin_theta) */
+    double cos_theta, sin_theta;
     int f_colour;    /* particle field: smoothed colour c' */
     int f_curvature; /* particle field: curvature [1/m] */
     double *nrm;     /* 5 x n: normals (3 x n), then |n| and the curvature average's work */

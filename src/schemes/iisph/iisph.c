@@ -107,6 +107,18 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         RY_TRY(ry_case_int(c, "scheme.curvature_smoothing", &one, 0, 20, &passes, err));
         s->colour.smoothing = (int)passes;
     }
+    if (ry_case_has(c, "scheme.contact_angle")) {
+        /* the two liquids' angle at the walls, through the liquid without colour */
+        double theta;
+        char where[256];
+        RY_CHECK(err, s->colour_on, RY_ERR_INPUT,
+                 "%s: key 'scheme.contact_angle': needs two liquids with scheme.surface_tension",
+                 ry_case_where(c, "scheme.contact_angle", where, sizeof where));
+        RY_TRY(ry_case_double(c, "scheme.contact_angle", NULL, 0.0, 180.0, &theta, err));
+        s->colour.wet = 1;
+        s->colour.cos_theta = cos(theta * 3.14159265358979323846 / 180.0);
+        s->colour.sin_theta = sin(theta * 3.14159265358979323846 / 180.0);
+    }
     if (s->colour_on) {
         const int a = s->colour.material, b = a == 0 && sim->nmat > 1 ? 1 : 0;
         s->colour.rho_bar = 0.5 * (sim->mat[a].density + sim->mat[b].density);
