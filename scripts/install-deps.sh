@@ -1,10 +1,10 @@
 #!/bin/sh
 # Installs the Debian packages ryushi needs to build, test, fuzz (clang with libFuzzer and its
-# OpenMP runtime), draw its pictures, run distributed (OpenMPI, for ryushi-mpi) and be driven
-# from Python (python/ryushi: NumPy; its tests: pytest, PyYAML).
+# OpenMP runtime), draw its pictures, solve by algebraic multigrid (hypre, with OpenMPI), run
+# distributed (ryushi-mpi) and be driven from Python (python/ryushi: NumPy; its tests: pytest, PyYAML).
 # Idempotent: packages already present are skipped; nothing is downloaded otherwise.
 set -eu
-PKGS="cmake make gcc pkg-config python3 python3-numpy python3-pytest python3-yaml libfyaml-dev libcmocka-dev libcairo2-dev zlib1g-dev clang-format clang libclang-rt-14-dev libomp-dev libopenmpi-dev openmpi-bin"
+PKGS="cmake make gcc pkg-config python3 python3-numpy python3-pytest python3-yaml libfyaml-dev libcmocka-dev libcairo2-dev zlib1g-dev clang-format clang libclang-rt-14-dev libomp-dev libopenmpi-dev openmpi-bin libhypre-dev"
 missing=""
 for p in $PKGS; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

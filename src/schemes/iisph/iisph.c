@@ -79,6 +79,10 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     RY_TRY(ry_case_choice(c, "scheme.viscosity", "explicit", vschemes, &s->implicit, err));
     double vtol = 1e-8;
     RY_TRY(ry_case_double(c, "scheme.viscosity_tolerance", &vtol, 1e-14, 1e-2, &s->vtol, err));
+    RY_TRY(ry_case_choice(c, "scheme.viscosity_preconditioner", "jacobi", ry_precond_names,
+                          &s->vprecond, err));
+    long reuse = 1;
+    RY_TRY(ry_case_int(c, "scheme.amg_reuse", &reuse, 1, 1000, &s->vamg.reuse, err));
     if (s->implicit) {
         char where[256];
         RY_CHECK(err, s->morris, RY_ERR_INPUT,
@@ -171,7 +175,9 @@ static void iisph_free(void *state) {
     free(s->delta);
     free(s->mu);
     ry_csr_free(&s->A);
+    ry_amg_free(&s->vamg);
     free(s->unk);
+    free(s->vslot);
     free(s->vb);
     free(s->vx);
     free(s->vown);

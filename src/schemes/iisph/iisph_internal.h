@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "linalg/amg.h"
 #include "linalg/sparse.h"
 #include "ryushi/sim.h"
 #include "ryushi/surface_tension.h"
@@ -82,7 +83,10 @@ typedef struct iisph {
     int implicit;
     double vtol;
     ry_csr A;
+    int vprecond;    /* scheme.viscosity_preconditioner (linalg/amg.h) */
+    ry_amg vamg;     /* with boomeramg: its solver */
     int32_t *unk;    /* unknown number of a mobile particle, else -1 */
+    int32_t *vslot;  /* with boomeramg: the particle of each unknown */
     double *vb, *vx; /* right-hand sides (3 per unknown); the components' and their solutions */
     double *vtmp;    /* per particle: halo entries on their way from the owners */
     uint8_t *vown;   /* per unknown: owned by this process (a distributed run) */

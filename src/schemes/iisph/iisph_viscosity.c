@@ -151,7 +151,8 @@ ry_status iisph_densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
  *                                                           / (r_ij^2 + 0.01 h^2) >= 0,
  * (the explicit term times m_i, whose pair coefficients are symmetric), walls and inlets with
  * their velocity (or the ghost velocity) as known values. The matrix is symmetric positive
- * definite: conjugate gradients with the Jacobi preconditioner (linalg/sparse.h), from v*.
+ * definite: conjugate gradients with the Jacobi preconditioner (linalg/sparse.h) or BoomerAMG
+ * (linalg/amg.h, scheme.viscosity_preconditioner), from v*.
  * The viscous acceleration (v - v*)/dt is added to acc. */
 ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err) {
     ry_particles *ps = &sim->ps;
@@ -161,13 +162,15 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
         const size_t cap = n + n / 4 + 16;
         int32_t *u = realloc(s->unk, cap * sizeof *u);
         if (u) s->unk = u;
+        int32_t *us = realloc(s->vslot, cap * sizeof *us);
+        if (us) s->vslot = us;
         double *b = realloc(s->vb, 3 * cap * sizeof *b);
         if (b) s->vb = b;
         double *x = realloc(s->vx, 7 * cap * sizeof *x);
         if (x) s->vx = x;
         uint8_t *o = realloc(s->vown, cap * sizeof *o);
         if (o) s->vown = o;
-        RY_CHECK(err, u && b && x && o, RY_ERR_NOMEM, "out of memory (implicit viscosity)");
+        RY_CHECK(err, u && us && b && x && o, RY_ERR_NOMEM, "out of memory (implicit viscosity)");
         s->vtmp = s->vx + 6 * cap;
         s->vcap = cap;
     }
@@ -239,7 +242,17 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
     }
     int it[3] = {0, 0, 0};
     double res[3] = {0, 0, 0};
-    RY_TRY(ry_csr_pcg_multi(A, dim, bd, xd, s->vtol, RY_IISPH_VISCOUS_MAX_ITER, it, res, dd, err));
+    if (s->vprecond == RY_PRECOND_BOOMERAMG && !sim->par) {
+        /* over the particles as slots, so that a hierarchy may serve several steps */
+        for (size_t i = 0; i < n; ++i)
+            if (s->unk[i] >= 0) s->vslot[s->unk[i]] = (int32_t)i;
+        const ry_amg_slots sl = {n, s->vslot, ps->id};
+        RY_TRY(ry_amg_pcg(&s->vamg, A, &sl, dim, bd, xd, s->vtol, RY_IISPH_VISCOUS_MAX_ITER, it,
+                          res, err));
+    } else {
+        RY_TRY(
+            ry_csr_pcg_multi(A, dim, bd, xd, s->vtol, RY_IISPH_VISCOUS_MAX_ITER, it, res, dd, err));
+    }
     for (int d = 0; d < dim; ++d) {
         double *v = ps->f[RY_F_VX + d];
         for (size_t i = 0; i < n; ++i)

@@ -92,6 +92,18 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_case_int(c, "scheme.solver.max_iterations", &maxit, 10, 1000000, &M->max_iter, err));
     long defl = 0;
     RY_TRY(ry_case_int(c, "scheme.solver.deflation", &defl, 0, 1000, &M->defl, err));
+    RY_TRY(ry_case_choice(c, "scheme.solver.preconditioner", "jacobi", ry_precond_names,
+                          &M->precond, err));
+    RY_TRY(ry_case_choice(c, "scheme.solver.viscosity_preconditioner", "jacobi", ry_precond_names,
+                          &M->vprecond, err));
+    char where[512];
+    RY_CHECK(err, !(M->defl > 0 && M->precond == RY_PRECOND_BOOMERAMG), RY_ERR_INPUT,
+             "%s: scheme.solver.deflation goes with the jacobi preconditioner only (boomeramg "
+             "already solves the smooth error that deflation removes)",
+             ry_case_where(c, "scheme.solver.deflation", where, sizeof where));
+    long reuse = 1;
+    RY_TRY(ry_case_int(c, "scheme.solver.amg_reuse", &reuse, 1, 1000, &reuse, err));
+    M->amg.reuse = M->vamg.reuse = reuse;
     M->re_g *= l0;
     M->re_l *= l0;
     RY_TRY(ry_st_read(&M->st, c, sim->dim, l0, 3.1, 6.0, err));
@@ -125,8 +137,11 @@ static void mps_free(void *state) {
     if (!M) return;
     ry_csr_free(&M->A);
     ry_csr_deflation_free(&M->D);
+    ry_amg_free(&M->amg);
+    ry_amg_free(&M->vamg);
     free(M->dmap);
     free(M->unk);
+    free(M->uslot);
     free(M->role);
     free(M->cline);
     free(M->b);
@@ -165,6 +180,8 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     size_t c = n + n / 4 + 16;
     int32_t *u = realloc(M->unk, c * sizeof *u);
     if (u) M->unk = u;
+    int32_t *us = realloc(M->uslot, c * sizeof *us);
+    if (us) M->uslot = us;
     uint8_t *r = realloc(M->role, c * sizeof *r);
     if (r) M->role = r;
     double *b = realloc(M->b, 3 * c * sizeof *b);
@@ -223,9 +240,10 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         if (cr) M->cut_row = cr;
     }
     RY_CHECK(err,
-             u && r && b && x && pd && o && ns && dv && t && ge && le && (vg || !M->rheo_ob) &&
-                 (wv || M->wall_mode != WALLV_MIRRORED) && (cl || !M->cl_slip) &&
-                 (wg || !M->body_group) && ((th && tv && tp && to && cr) || !M->body_thin),
+             u && us && r && b && x && pd && o && ns && dv && t && ge && le &&
+                 (vg || !M->rheo_ob) && (wv || M->wall_mode != WALLV_MIRRORED) &&
+                 (cl || !M->cl_slip) && (wg || !M->body_group) &&
+                 ((th && tv && tp && to && cr) || !M->body_thin),
              RY_ERR_NOMEM, "out of memory (MPS work arrays)");
     M->cap = c;
     return RY_OK;
@@ -362,6 +380,24 @@ static int mps_vars(void *state, ry_state_var *v, int max) {
     return k;
 }
 
+/* The summary: the linear solves of this process, iterations per solve and seconds in them per
+ * step (the implicit viscosity's iterations summed over the components). */
+static void mps_report(void *state, char *buf, size_t size) {
+    const mps *M = state;
+    const double ps = M->psolves ? (double)M->psolves : 1.0;
+    const int k =
+        snprintf(buf, size, "pressure_preconditioner=%s ppe_iterations_mean=%.3g ppe_solve_s=%.3g",
+                 ry_precond_names[M->precond], (double)M->total_piters / ps, M->psolve_s / ps);
+    int k2 = k;
+    if (M->precond == RY_PRECOND_BOOMERAMG && k > 0 && (size_t)k < size)
+        k2 += snprintf(buf + k, size - (size_t)k, " ppe_amg_setup_s=%.3g", M->amg.setup_s / ps);
+    if (M->vsolves && k2 > 0 && (size_t)k2 < size)
+        snprintf(buf + k2, size - (size_t)k2,
+                 " viscous_preconditioner=%s viscous_iterations_mean=%.3g viscous_solve_s=%.3g",
+                 ry_precond_names[M->vprecond], (double)M->total_viters / (double)M->vsolves,
+                 M->vsolve_s / (double)M->vsolves);
+}
+
 /* Statistics: the pressure solver's iterations (last step, total) and the pairs within the
  * interaction radius that thin walls cut at the last step, counted from both ends. */
 static int mps_stat(const ry_sim *sim, const void *state, const char *name, double *value) {
@@ -394,6 +430,7 @@ const ry_scheme_type ry_scheme_mps = {
     .step = mps_step,
     .free = mps_free,
     .state_vars = mps_vars,
+    .report = mps_report,
     .stat = mps_stat,
     .needs = mps_needs,
     .caps = RY_SCHEME_RHEOLOGY};

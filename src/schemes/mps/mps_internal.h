@@ -11,6 +11,7 @@
 
 #include "ryushi/sim.h"
 #include "ryushi/surface_tension.h"
+#include "linalg/amg.h"
 #include "linalg/sparse.h"
 #include "physics/colour_field.h"
 #include "pairs/pair_cache.h"
@@ -69,11 +70,14 @@ typedef struct mps {
     int wall_mode;             /* walls in the viscous terms: own velocity, mirrored, slip */
     double *wd;                /* with it: distance of each particle to the wall surface */
     ry_csr A;
-    long defl;          /* scheme.solver.deflation: aggregate side in spacings (0: none) */
-    ry_csr_deflation D; /* with it: the pressure solve's aggregates */
-    int32_t *dmap;      /*   and the aggregate of each cell of their grid */
+    long defl;             /* scheme.solver.deflation: aggregate side in spacings (0: none) */
+    ry_csr_deflation D;    /* with it: the pressure solve's aggregates */
+    int precond, vprecond; /* scheme.solver.preconditioner, .viscosity_preconditioner */
+    ry_amg amg, vamg;      /* with boomeramg: the pressure's and the viscosity's solver */
+    int32_t *dmap;         /*   and the aggregate of each cell of their grid */
     size_t dmap_cap;
-    int32_t *unk; /* unknown index per particle, -1 if none */
+    int32_t *unk;   /* unknown index per particle, -1 if none */
+    int32_t *uslot; /* with boomeramg: the particle of each unknown */
     uint8_t *role;
     uint8_t *cline; /* with cl_slip: 1 for a fluid particle with another liquid near */
     double *b, *xs;
@@ -102,6 +106,10 @@ typedef struct mps {
     size_t cap;
     int last_iters, last_viters;
     long total_iters, steps;
+    /* this process's solves (not in checkpoints): iterations and solves of the pressure and
+     * the viscosity, and the seconds in their solvers (assembly excluded) */
+    long total_piters, psolves, total_viters, vsolves;
+    double psolve_s, vsolve_s;
 } mps;
 
 /* Kinematic viscosity of a pair (harmonic mean: symmetric, and 0 next to an inviscid fluid).
@@ -190,6 +198,7 @@ void mps_csf_dirichlet(ry_sim *sim, mps *M);
 
 /* mps_pressure.c: the linear systems, the pressure Poisson equation and the correction */
 const ry_csr_dist *mps_dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d);
+ry_amg_slots mps_slots(const ry_sim *sim, mps *M);
 ry_status mps_assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double dt, double diag_extra,
                        ry_error *err);
 ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err);

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ryushi/clock.h"
 #include "physics/gradient_mps_koshizuka1996.h"
 #include "physics/laplacian_mps_koshizuka1996.h"
 #include "schemes/mps/mps_internal.h"
@@ -19,6 +20,15 @@
 const ry_csr_dist *mps_dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d) {
     M->pu = (ry_particle_unknowns){sim, M->unk, M->own, M->ptmp};
     return ry_particle_dist(&M->pu, d);
+}
+
+/* The particles as the slots of a BoomerAMG solve over the current unknowns (mps_pressure,
+ * mps_viscosity). */
+ry_amg_slots mps_slots(const ry_sim *sim, mps *M) {
+    const ry_particles *ps = &sim->ps;
+    for (size_t i = 0; i < ps->n; ++i)
+        if (M->unk[i] >= 0) M->uslot[M->unk[i]] = (int32_t)i;
+    return (ry_amg_slots){ps->n, M->uslot, ps->id};
 }
 
 /* Pressure: pairs between unknowns and free-surface particles (Dirichlet); dummies and thin
@@ -225,7 +235,13 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     int it;
     double res;
     ry_csr_dist dd;
-    if (M->defl > 0 && !sim->par) {
+    const double t0 = ry_wall_time();
+    if (M->precond == RY_PRECOND_BOOMERAMG && !sim->par) {
+        const double *bb = M->b;
+        const ry_amg_slots sl = mps_slots(sim, M);
+        RY_TRY(ry_amg_pcg(&M->amg, &M->A, &sl, 1, &bb, &M->xs, M->tol, (int)M->max_iter, &it, &res,
+                          err));
+    } else if (M->defl > 0 && !sim->par) {
         const double *bb = M->b;
         RY_TRY(aggregates(sim, M, nunk, err));
         RY_TRY(ry_csr_pcg_deflated(&M->A, 1, &bb, &M->xs, &M->D, M->tol, (int)M->max_iter, &it,
@@ -234,6 +250,9 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->tol, (int)M->max_iter, &it, &res,
                           mps_dist_of(sim, M, &dd), err));
     }
+    M->psolve_s += ry_wall_time() - t0;
+    M->psolves++;
+    M->total_piters += it;
     M->last_iters = it;
     M->total_iters += it;
     double *p = ps->f[RY_F_P];

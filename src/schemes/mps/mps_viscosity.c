@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "linalg/small.h"
+#include "ryushi/clock.h"
 #include "ryushi/rheology.h"
 #include "physics/gradient_mps_koshizuka1996.h"
 #include "physics/laplacian_mps_koshizuka1996.h"
@@ -263,12 +264,21 @@ ry_status mps_viscous_implicit(ry_sim *sim, mps *M, double dt, int with_st, ry_e
     int it[3];
     double res[3];
     ry_csr_dist dd;
-    RY_TRY(ry_csr_pcg_multi(&M->A, dim, bs, xv, M->vtol, (int)M->max_iter, it, res,
-                            mps_dist_of(sim, M, &dd), err));
+    const double t0 = ry_wall_time();
+    if (M->vprecond == RY_PRECOND_BOOMERAMG && !sim->par) {
+        const ry_amg_slots sl = mps_slots(sim, M);
+        RY_TRY(
+            ry_amg_pcg(&M->vamg, &M->A, &sl, dim, bs, xv, M->vtol, (int)M->max_iter, it, res, err));
+    } else
+        RY_TRY(ry_csr_pcg_multi(&M->A, dim, bs, xv, M->vtol, (int)M->max_iter, it, res,
+                                mps_dist_of(sim, M, &dd), err));
+    M->vsolve_s += ry_wall_time() - t0;
+    M->vsolves++;
     M->last_viters = 0;
     for (int d = 0; d < dim; ++d) {
         double *vs = ps->f[M->f_vs[d]];
         M->last_viters += it[d];
+        M->total_viters += it[d];
         for (size_t i = 0; i < n; ++i)
             if (M->unk[i] >= 0) vs[i] = xv[d][M->unk[i]];
     }
