@@ -65,4 +65,11 @@ ry_status ry_geometry_from_case(ry_particles *ps, ry_case *c, double dx,
                                 const char *const *material_names, int nmat, int64_t **first_id,
                                 size_t *nbodies, ry_error *err);
 
+/* Removes the wall particles more than `layers` layers (of one spacing dx) from the space the
+ * fluid can reach: the space no wall occupies that is connected to a non-wall particle, entering
+ * the nzones boxes `zones` (open boundaries; lo[3] then hi[3] each) but not leaving them. The
+ * others keep their order and ids; *removed receives the count. */
+ry_status ry_walls_trim(ry_particles *ps, double dx, int layers, const double *zones, int nzones,
+                        size_t *removed, ry_error *err);
+
 #endif

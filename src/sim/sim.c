@@ -309,6 +309,26 @@ const char *ry_head_position(int k, double down[3]) {
     return pos_names[k];
 }
 
+/* Wall particles beyond the reach of the fluid's neighbours (domain.wall_layers: the layers
+ * kept), removed where the case asks; the open boundaries' zones bound the fluid's space. */
+static ry_status trim_walls(ry_sim *sim, ry_case *c, ry_error *err) {
+    long layers = 0;
+    RY_TRY(ry_case_int(c, "domain.wall_layers", &layers, 0, 100, &layers, err));
+    if (layers == 0) return RY_OK;
+    double *zones = malloc((size_t)(sim->nopen + 1) * 6 * sizeof *zones);
+    RY_CHECK(err, zones != NULL, RY_ERR_NOMEM, "out of memory");
+    for (int k = 0; k < sim->nopen; ++k)
+        for (int d = 0; d < 3; ++d) {
+            zones[6 * k + d] = sim->open[k].lo[d];
+            zones[6 * k + 3 + d] = sim->open[k].hi[d];
+        }
+    size_t gone = 0;
+    const ry_status st =
+        ry_walls_trim(&sim->ps, sim->dx, (int)layers, zones, sim->nopen, &gone, err);
+    free(zones);
+    return st;
+}
+
 ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *err) {
     memset(sim, 0, sizeof *sim);
     long dim;
@@ -348,6 +368,7 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     free(mnames);
     RY_TRY(st);
     RY_TRY(ry_open_setup(sim, c, err));
+    RY_TRY(trim_walls(sim, c, err));
 
     /* Mass from the material density on the lattice; density at rest. */
     double vol = pow(sim->dx, sim->dim);
