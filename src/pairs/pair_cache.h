@@ -19,6 +19,10 @@ typedef struct ry_pair_cache {
     size_t cap, cap_n;
     const uint8_t *cut; /* set by the caller, or NULL: entries of the neighbour list to leave
                            out (MPS: the pairs across a thin wall) */
+    /* set by the caller, or NULL: the rows of the kinds k with partner_rows[k] keep only the
+     * pairs with a neighbour of a kind in partners (IISPH: a wall's row, its mobile
+     * neighbours; the wall-wall pairs, most of a thick wall's, are read by no pass) */
+    const int *partner_rows, *partners;
 } ry_pair_cache;
 
 /* Fills the cache for the rows of the particles with need[kind] set (other rows are empty). */
