@@ -51,7 +51,8 @@ static void drop_solve(ry_amg *s) {
     s->solver = s->ij = s->bv = s->xv = NULL;
 }
 
-void ry_amg_invalidate(ry_amg *s) {
+/* The hierarchy dropped: the next solve builds a new one. */
+static void invalidate(ry_amg *s) {
     if (s->precond) HYPRE_BoomerAMGDestroy((HYPRE_Solver)s->precond);
     if (s->ij_setup && s->ij_setup != s->ij) HYPRE_IJMatrixDestroy((HYPRE_IJMatrix)s->ij_setup);
     s->precond = s->ij_setup = NULL;
@@ -61,7 +62,7 @@ void ry_amg_invalidate(ry_amg *s) {
 void ry_amg_free(ry_amg *s) {
     if (!s) return;
     drop_solve(s);
-    ry_amg_invalidate(s);
+    invalidate(s);
     free(s->ids);
     free(s->key);
     free(s->ncols);
@@ -181,7 +182,7 @@ static int same_rows(const ry_amg *s, int keyed, int n) {
 
 /* A new hierarchy from the current matrix. */
 static ry_status build(ry_amg *s, int keyed, int n, ry_error *err) {
-    ry_amg_invalidate(s);
+    invalidate(s);
     HYPRE_Solver amg;
     HYPRE_BoomerAMGCreate(&amg);
     s->precond = amg;

@@ -63,8 +63,6 @@ typedef struct ry_amg {
 ry_status ry_amg_pcg(ry_amg *s, const ry_csr *a, const ry_amg_slots *slots, int m,
                      const double *const b[], double *const x[], double tol, int max_iter,
                      int iters[], double resid[], ry_error *err);
-/* The next solve builds a new hierarchy. */
-void ry_amg_invalidate(ry_amg *s);
 void ry_amg_free(ry_amg *s);
 
 #endif

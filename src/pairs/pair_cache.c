@@ -11,23 +11,17 @@ static void cache_row(ry_pair_cache *pc, const ry_sim *sim, size_t i, uint32_t *
     const double rad2 = k->radius * k->radius;
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = sim->nl.j;
-    size_t c = 0;
+    _Static_assert(RY_KIND_COUNT == 5, "every kind a partner");
+    static const int every[RY_KIND_COUNT] = {1, 1, 1, 1, 1};
     const uint8_t *kind = sim->ps.kind;
-    if (pc->partner_rows && pc->partner_rows[kind[i]]) {
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            if (!pc->partners[kind[nb[q]]]) continue;
-            double dx[3];
-            const double r2 = ry_sim_separation(sim, nb[q], i, dx);
-            in[c] = (uint32_t)(q - off[i]);
-            c += (r2 < rad2) & (r2 > 0) & !(pc->cut && pc->cut[q]);
-        }
-    } else {
-        for (size_t q = off[i]; q < off[i + 1]; ++q) {
-            double dx[3]; /* x_i - x_j */
-            const double r2 = ry_sim_separation(sim, nb[q], i, dx);
-            in[c] = (uint32_t)(q - off[i]);
-            c += (r2 < rad2) & (r2 > 0) & !(pc->cut && pc->cut[q]);
-        }
+    const int *partner = pc->partner_rows && pc->partner_rows[kind[i]] ? pc->partners : every;
+    size_t c = 0;
+    for (size_t q = off[i]; q < off[i + 1]; ++q) {
+        if (!partner[kind[nb[q]]]) continue;
+        double dx[3]; /* x_i - x_j */
+        const double r2 = ry_sim_separation(sim, nb[q], i, dx);
+        in[c] = (uint32_t)(q - off[i]);
+        c += (r2 < rad2) & (r2 > 0) & !(pc->cut && pc->cut[q]);
     }
     for (size_t e = 0; e < c; ++e) {
         const size_t q = off[i] + in[e];

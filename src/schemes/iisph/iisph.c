@@ -79,6 +79,11 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     RY_TRY(ry_case_choice(c, "scheme.viscosity", "explicit", vschemes, &s->implicit, err));
     double vtol = 1e-8;
     RY_TRY(ry_case_double(c, "scheme.viscosity_tolerance", &vtol, 1e-14, 1e-2, &s->vtol, err));
+    /* the pair cache's wall rows: their mobile neighbours alone (the Adami extrapolation, the
+     * ghost velocity); no pass reads a wall's wall neighbours */
+    static const int wall_rows[RY_KIND_COUNT] = {[RY_KIND_WALL] = 1};
+    s->pc.partner_rows = wall_rows;
+    s->pc.partners = MOBILE;
     RY_TRY(ry_case_choice(c, "scheme.viscosity_preconditioner", "jacobi", ry_precond_names,
                           &s->vprecond, err));
     long reuse = 1;
@@ -273,11 +278,6 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     }
     static const int need[RY_KIND_COUNT] = {
         [RY_KIND_FLUID] = 1, [RY_KIND_OUTLET] = 1, [RY_KIND_WALL] = 1, [RY_KIND_INLET] = 1};
-    /* the walls' rows: their mobile neighbours alone (the Adami extrapolation, the ghost
-     * velocity); no pass reads a wall's wall neighbours */
-    static const int wall_rows[RY_KIND_COUNT] = {[RY_KIND_WALL] = 1};
-    s->pc.partner_rows = wall_rows;
-    s->pc.partners = MOBILE;
     RY_TRY(ry_pair_cache_fill(&s->pc, sim, need, err));
     /* 2. Number density and the non-pressure forces: viscosity, gravity, polymer stress,
      * interfacial and surface tension. */

@@ -70,14 +70,14 @@ typedef struct mps {
     int wall_mode;             /* walls in the viscous terms: own velocity, mirrored, slip */
     double *wd;                /* with it: distance of each particle to the wall surface */
     ry_csr A;
-    long defl;             /* scheme.solver.deflation: aggregate side in spacings (0: none) */
-    ry_csr_deflation D;    /* with it: the pressure solve's aggregates */
+    long defl;          /* scheme.solver.deflation: aggregate side in spacings (0: none) */
+    ry_csr_deflation D; /* with it: the pressure solve's aggregates */
+    int32_t *dmap;      /*   and the aggregate of each cell of their grid */
+    size_t dmap_cap;
     int precond, vprecond; /* scheme.solver.preconditioner, .viscosity_preconditioner */
     ry_amg amg, vamg;      /* with boomeramg: the pressure's and the viscosity's solver */
-    int32_t *dmap;         /*   and the aggregate of each cell of their grid */
-    size_t dmap_cap;
-    int32_t *unk;   /* unknown index per particle, -1 if none */
-    int32_t *uslot; /* with boomeramg: the particle of each unknown */
+    int32_t *unk;          /* unknown index per particle, -1 if none */
+    int32_t *uslot;        /* with boomeramg: the particle of each unknown */
     uint8_t *role;
     uint8_t *cline; /* with cl_slip: 1 for a fluid particle with another liquid near */
     double *b, *xs;
