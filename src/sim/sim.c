@@ -326,7 +326,11 @@ static ry_status trim_walls(ry_sim *sim, ry_case *c, ry_error *err) {
     const ry_status st =
         ry_walls_trim(&sim->ps, sim->dx, (int)layers, zones, sim->nopen, &gone, err);
     free(zones);
-    return st;
+    if (st == RY_OK) return RY_OK;
+    char where[512], msg[sizeof err->msg]; /* the message with the key's place in the case */
+    snprintf(msg, sizeof msg, "%s", err->msg);
+    return ry_error_set(err, st, "%s: %s",
+                        ry_case_where(c, "domain.wall_layers", where, sizeof where), msg);
 }
 
 ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *err) {

@@ -98,8 +98,8 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
                           &M->vprecond, err));
     char where[512];
     RY_CHECK(err, !(M->defl > 0 && M->precond == RY_PRECOND_BOOMERAMG), RY_ERR_INPUT,
-             "%s: scheme.solver.deflation goes with the jacobi preconditioner only (boomeramg "
-             "already solves the smooth error that deflation removes)",
+             "%s: key 'scheme.solver.deflation': goes with the jacobi preconditioner only "
+             "(boomeramg already solves the smooth error that deflation removes)",
              ry_case_where(c, "scheme.solver.deflation", where, sizeof where));
     long reuse = 1;
     RY_TRY(ry_case_int(c, "scheme.solver.amg_reuse", &reuse, 1, 1000, &reuse, err));
