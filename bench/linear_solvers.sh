@@ -15,7 +15,7 @@
 #            viscosity of the embolic liquid)
 # Each run prints one line: case, spacing, preconditioner, the hierarchy's reuse, particles,
 # steps, pressure iterations per solve, pressure-solve seconds per step, viscous iterations per
-# step (three components together) and seconds, seconds per step, particle-steps/s.
+# step (three components together) and seconds, seconds per step, particle-steps/s, peak memory.
 # Exit status: 0 on success, 1 with a message on stderr when a run fails.
 set -eu
 
@@ -53,14 +53,14 @@ one() { # one NAME CASE SPACING PRECOND REUSE [--set ...]
     wall=$(field wall_s "$s")
     vi=$(field viscous_iterations_mean "$s")
     vs=$(field viscous_solve_s "$s")
-    printf '%-8s %-10s %-9s %5s %8s %6s %7s %9s %7s %9s %9s %10s\n' "${name%%_*}" "$dx" "$pc" "$reuse" \
+    printf '%-8s %-10s %-9s %5s %8s %6s %7s %9s %7s %9s %9s %10s %8s\n' "${name%%_*}" "$dx" "$pc" "$reuse" \
         "$(field particles "$s")" "$steps" "$(field ppe_iterations_mean "$s")" \
         "$(field ppe_solve_s "$s")" "$vi" "$vs" "$(awk "BEGIN{printf \"%.4g\", $wall/$steps}")" \
-        "$(field particle_steps_per_s "$s")"
+        "$(field particle_steps_per_s "$s")" "$(field peak_rss_mb "$s")"
 }
 
-printf '%-8s %-10s %-9s %5s %8s %6s %7s %9s %7s %9s %9s %10s\n' case spacing precond reuse \
-    particles steps p_iter p_solve_s v_iter v_solve_s step_s psteps_s
+printf '%-8s %-10s %-9s %5s %8s %6s %7s %9s %7s %9s %9s %10s %8s\n' case spacing precond reuse \
+    particles steps p_iter p_solve_s v_iter v_solve_s step_s psteps_s peak_mb
 for c in $CASES; do
     case $c in
     dam2d)
