@@ -19,7 +19,17 @@ typedef struct ry_box {
     int dim;
     double lo[3], hi[3];
     int periodic[3];
+    /* Symmetry planes (domain.symmetry): bit 1, the face at lo[d]; bit 2, the one at hi[d]. */
+    int symmetry[3];
 } ry_box;
+
+/* The parts of the whole problem a box with symmetry planes holds one of: 2^planes. */
+static inline int ry_box_mirrors(const ry_box *b) {
+    int m = 1;
+    for (int d = 0; d < 3; ++d)
+        if (b->symmetry[d]) m *= 2;
+    return m;
+}
 
 /* Minimum-image correction of a separation vector dx (x_i - x_j) in periodic directions. */
 static inline void ry_box_min_image(const ry_box *b, double *dx) {

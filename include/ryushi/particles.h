@@ -20,9 +20,9 @@
 /* X(ID, name, unit, component, flags): component is the vector component (0, 1, 2) or -1 for a
  * scalar; flags are RY_FIELD_* bits. */
 #define RY_CORE_FIELDS(X)                                                                          \
-    X(RY_F_X, "x", "m", 0, RY_FIELD_STATE)                                                         \
-    X(RY_F_Y, "y", "m", 1, RY_FIELD_STATE)                                                         \
-    X(RY_F_Z, "z", "m", 2, RY_FIELD_STATE)                                                         \
+    X(RY_F_X, "x", "m", 0, RY_FIELD_STATE | RY_FIELD_POSITION)                                     \
+    X(RY_F_Y, "y", "m", 1, RY_FIELD_STATE | RY_FIELD_POSITION)                                     \
+    X(RY_F_Z, "z", "m", 2, RY_FIELD_STATE | RY_FIELD_POSITION)                                     \
     X(RY_F_VX, "vx", "m/s", 0, RY_FIELD_STATE)                                                     \
     X(RY_F_VY, "vy", "m/s", 1, RY_FIELD_STATE)                                                     \
     X(RY_F_VZ, "vz", "m/s", 2, RY_FIELD_STATE)                                                     \
@@ -48,7 +48,10 @@ enum {
     RY_FIELD_ON_REQUEST = 4,
     /* rewritten within every step before it is read (a half-step value): neither checkpointed
      * nor kept in the guard's last good state */
-    RY_FIELD_SCRATCH = 8
+    RY_FIELD_SCRATCH = 8,
+    /* a coordinate (component 0..2) of a point: a mirror maps it to the plane's far side
+     * rather than negating it */
+    RY_FIELD_POSITION = 16
 };
 
 typedef enum ry_field_id {
@@ -72,6 +75,10 @@ typedef struct ry_field_info {
     char *unit;
     int component; /* 0..2 for vector components, -1 for scalars */
     int flags;
+    /* The axes (bit d for axis d) whose mirror negates the value (a symmetry plane's copies):
+     * 1 << component for a vector's component, none for a scalar (the default); a tensor's
+     * component ab sets it to (1 << a) ^ (1 << b) (ry_particles_set_parity). */
+    unsigned odd;
 } ry_field_info;
 
 typedef struct ry_particles {
@@ -116,6 +123,8 @@ ry_status ry_particles_permute(ry_particles *ps, const uint32_t *order, ry_error
 /* Registers a field (or finds an existing one of that name); *id is its index. */
 ry_status ry_particles_add_field(ry_particles *ps, const char *name, const char *unit,
                                  int component, int flags, int *id, ry_error *err);
+/* Sets field k's odd axes (see ry_field_info.odd). */
+void ry_particles_set_parity(ry_particles *ps, int k, unsigned odd);
 /* Field index by name, -1 when absent. */
 int ry_particles_field(const ry_particles *ps, const char *name);
 /* Bytes per particle held by the set's arrays. */

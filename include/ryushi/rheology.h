@@ -46,6 +46,8 @@ double ry_rheology_shear_nu(const ry_rheology *r, double nu_newtonian, double gd
 int ry_tau_count(int dim);
 void ry_tau_index(int dim, int k, int *a, int *b);
 const char *ry_tau_name(int dim, int k);
+/* The axes whose mirror negates component k (tau_ab: a's and b's unless they are the same). */
+unsigned ry_tau_odd(int dim, int k);
 /* |tau|^2 = tau : tau of the stored components (the off-diagonal ones counted twice). */
 double ry_tau_norm2(int dim, const double *tau);
 /* One step of a visco-elastic model's stress equation at a particle of density rho, tau

@@ -106,16 +106,27 @@ typedef struct ry_par_ops {
     double (*sum)(ry_sim *sim, double v);
     /* A scheme's own per-particle array (ncomp values per particle, interleaved) from the
      * owners to their halo copies: for solvers whose passes read their neighbours' results
-     * of the pass before (e.g. an iterative pressure solve). */
-    void (*sync)(ry_sim *sim, double *a, int ncomp);
+     * of the pass before (e.g. an iterative pressure solve). Three values per particle are a
+     * vector; one is a scalar, or, with odd, a quantity a mirror negates (bit d: a mirror
+     * across axis d; a vector's component d has 1 << d, see ry_field_info.odd). */
+    void (*sync)(ry_sim *sim, double *a, int ncomp, unsigned odd);
+    /* The same for a particle field k (its own parity; positions mirrored). */
+    void (*sync_field)(ry_sim *sim, int k);
     /* At a neighbour search: drops the halo, moves particles to the ranks that own their
      * positions (re-balancing the subdomains when needed) and receives the new halo, which
      * reaches 2 * reach beyond the subdomain (so that a quantity of a halo particle computed
      * from its own neighbours, e.g. a wall's pressure, is right where an owned particle uses
      * it). */
     ry_status (*redistribute)(ry_sim *sim, double reach, ry_error *err);
+    /* After a restart, before the list of the last search is built again from the positions
+     * it was built at (sim->f_xref): the halo of that search, from those positions. NULL
+     * where a restart searches afresh (a distributed run). */
+    ry_status (*redistribute_at_ref)(ry_sim *sim, double reach, ry_error *err);
     /* Between searches: the halo particles' fields from their owners. */
     ry_status (*halo_update)(ry_sim *sim, ry_error *err);
+    /* Before a search reorders the particles by cell: may rearrange order (a permutation);
+     * returns non-zero when it did, and the cells are then binned afresh. NULL: none. */
+    int (*partition)(ry_sim *sim, uint32_t *order);
     /* After the particles were reordered (ry_particles_permute with order). */
     void (*permuted)(ry_sim *sim, const uint32_t *order);
     /* The guard's verdict from this rank's tallies (see ry_check_verdict). */

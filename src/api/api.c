@@ -15,6 +15,7 @@
 #include "ryushi/probes.h"
 #include "ryushi/run.h"
 #include "ryushi/sim.h"
+#include "sim/symmetry.h"
 
 /* What the interface keeps per handle (ry_sim.api). */
 typedef struct api_state {
@@ -218,8 +219,9 @@ int ry_sim_dimension(const ry_sim *sim) {
     return sim ? sim->dim : 0;
 }
 
+/* (symmetry planes' copies follow the set's own particles: the accessors stop before them) */
 size_t ry_sim_count(const ry_sim *sim) {
-    return sim ? sim->ps.n : 0;
+    return sim ? ry_symmetry_owned(sim) : 0;
 }
 
 const char *ry_sim_scheme(const ry_sim *sim) {
@@ -242,35 +244,36 @@ int ry_sim_field(const ry_sim *sim, const char *name, const double **data, size_
     if (k < 0 || !sim->ps.f[k])
         return fail_input("no field of doubles '%s' (ry_sim_field_names lists them)", name);
     *data = sim->ps.f[k];
-    *n = sim->ps.n;
+    *n = ry_symmetry_owned(sim);
     return 0;
 }
 
 int ry_sim_int_field(const ry_sim *sim, const char *name, const int64_t **data, size_t *n) {
     if (!sim || !name || !data || !n) return fail_input("ry_sim_int_field: %s", "missing argument");
     const ry_particles *ps = &sim->ps;
+    const size_t own = ry_symmetry_owned(sim);
     if (strcmp(name, "id") == 0) {
         *data = ps->id;
-        *n = ps->n;
+        *n = own;
         return 0;
     }
     const int k = strcmp(name, "kind") == 0 ? 1 : strcmp(name, "material") == 0 ? 2 : -1;
     if (k < 0) return fail_input("no integer field '%s' (id, kind, material)", name);
     api_state *a = state_of(sim);
-    if (a->ints_cap[k] < ps->n || !a->ints[k]) {
-        int64_t *p = realloc(a->ints[k], (ps->n ? ps->n : 1) * sizeof *p);
+    if (a->ints_cap[k] < own || !a->ints[k]) {
+        int64_t *p = realloc(a->ints[k], (own ? own : 1) * sizeof *p);
         if (!p) {
             ry_error e = {0};
             ry_error_set(&e, RY_ERR_NOMEM, "out of memory (field %s)", name);
             return fail(&e);
         }
         a->ints[k] = p;
-        a->ints_cap[k] = ps->n;
+        a->ints_cap[k] = own;
     }
     const uint8_t *src = k == 1 ? ps->kind : ps->material;
-    for (size_t i = 0; i < ps->n; ++i) a->ints[k][i] = src[i];
+    for (size_t i = 0; i < own; ++i) a->ints[k][i] = src[i];
     *data = a->ints[k];
-    *n = ps->n;
+    *n = own;
     return 0;
 }
 
@@ -311,18 +314,30 @@ const char *ry_sim_field_unit(const ry_sim *sim, const char *name) {
     return NULL;
 }
 
+typedef struct probe_call {
+    const ry_probe *p;
+    double *value;
+} probe_call;
+
+static ry_status probe_eval(ry_sim *sim, void *ctx, ry_error *err) {
+    probe_call *c = ctx;
+    return ry_probe_eval(c->p, sim, c->value, err);
+}
+
+/* A probe's value: the whole problem's where symmetry planes halve it. */
+static int probe_value(ry_sim *sim, const ry_probe *p, double *value) {
+    ry_error err = {0};
+    probe_call c = {p, value};
+    return ry_symmetry_measure(sim, probe_eval, &c, &err) == RY_OK ? 0 : fail(&err);
+}
+
 int ry_sim_probe(ry_sim *sim, const char *name, double *value) {
     if (!sim || !name || !value) return fail_input("ry_sim_probe: %s", "missing argument");
-    for (int k = 0; k < sim->nregions; ++k) { /* the case's own: a retina region's coverage */
-        if (strcmp(sim->regions[k].probe.name, name) != 0) continue;
-        ry_error err = {0};
-        return ry_probe_eval(&sim->regions[k].probe, sim, value, &err) == RY_OK ? 0 : fail(&err);
-    }
-    for (const ry_probe *const *p = ry_probes(); *p; ++p) {
-        if (strcmp((*p)->name, name) != 0) continue;
-        ry_error err = {0};
-        return (*p)->eval(sim, value, &err) == RY_OK ? 0 : fail(&err);
-    }
+    for (int k = 0; k < sim->nregions; ++k) /* the case's own: a retina region's coverage */
+        if (strcmp(sim->regions[k].probe.name, name) == 0)
+            return probe_value(sim, &sim->regions[k].probe, value);
+    for (const ry_probe *const *p = ry_probes(); *p; ++p)
+        if (strcmp((*p)->name, name) == 0) return probe_value(sim, *p, value);
     return fail_input("no probe '%s' (`ryushi probes` lists them)", name);
 }
 

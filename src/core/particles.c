@@ -53,6 +53,7 @@ ry_status ry_particles_add_field(ry_particles *ps, const char *name, const char 
     fi->unit = ry_strdup(unit);
     fi->component = component;
     fi->flags = flags;
+    fi->odd = component >= 0 ? 1u << component : 0u;
     ps->f[k] = NULL;
     if (!fi->name || !fi->unit) {
         free(fi->name);
@@ -82,6 +83,10 @@ ry_status ry_particles_use_field(ry_particles *ps, int k, ry_error *err) {
                  ps->info[k].name);
     }
     return RY_OK;
+}
+
+void ry_particles_set_parity(ry_particles *ps, int k, unsigned odd) {
+    if (k >= 0 && k < ps->nfields) ps->info[k].odd = odd;
 }
 
 int ry_particles_field(const ry_particles *ps, const char *name) {

@@ -7,7 +7,9 @@
 #include "neighbor/neighbor_internal.h"
 #include "ryushi/sim.h"
 
-/* Largest squared displacement since the last list build. */
+/* Largest squared displacement since the last list build. Halo copies (a distributed run's,
+ * symmetry planes') do not count: they follow their originals at their next update, and
+ * until then hold what the step made of them. */
 static double max_drift2(const ry_sim *sim) {
     const ry_particles *ps = &sim->ps;
     double m = 0;
@@ -18,6 +20,7 @@ static double max_drift2(const ry_sim *sim) {
     for (int d = 0; d < dim; ++d) xr[d] = ps->f[sim->f_xref + d];
 #pragma omp parallel for schedule(static) reduction(max : m)
     for (size_t i = 0; i < n; ++i) {
+        if (ry_sim_is_halo(sim, i)) continue;
         double r2 = 0;
         for (int d = 0; d < dim; ++d) {
             double e = x[d][i] - xr[d][i];
@@ -57,11 +60,13 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     }
     const double *x[3];
     const double reach = radius + skin;
+    if (sim->par && !sim->par->redistribute_at_ref) sim->nl_restore = 0;
     if (sim->nl_restore && radius == sim->nl_radius && ps->n > 0) {
         /* After a restart: the list of the last build, from the positions it was built at,
          * then the same decision as in the uninterrupted run: reuse it, or search afresh
          * (which reorders the particles when the scheme sorts at every search). */
         sim->nl_restore = 0;
+        if (sim->par) RY_TRY(sim->par->redistribute_at_ref(sim, reach, err));
         for (int d = 0; d < 3; ++d) x[d] = d < sim->dim ? ps->f[sim->f_xref + d] : NULL;
         RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
         sim->nl_generation++;
@@ -69,7 +74,7 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
             RY_TRY(ry_nlist_build_cells(&sim->nl, &sim->cells, &sim->box, reach, ps->n, x, err));
         if (skin > 0 && max_drift2(sim) < 0.25 * skin * skin) {
             sim->nl_reuses++;
-            return RY_OK;
+            return sim->par ? sim->par->halo_update(sim, err) : RY_OK;
         }
     }
     sim->nl_restore = 0;
@@ -78,10 +83,15 @@ ry_status ry_sim_neighbors(ry_sim *sim, double radius, ry_error *err) {
     RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
     if (sim->sort_always || (sim->reorder_every > 0 && sim->searches % sim->reorder_every == 0)) {
         if (sim->sort_always) ry_cells_sort_x(&sim->cells, x[0]);
+        const int rebin = sim->par && sim->par->partition &&
+                          sim->par->partition(sim, sim->cells.order); /* the copies last */
         RY_TRY(ry_particles_permute(ps, sim->cells.order, err));
         if (sim->par) sim->par->permuted(sim, sim->cells.order);
         ry_particles_coords(ps, x);
-        ry_cells_permuted(&sim->cells);
+        if (rebin)
+            RY_TRY(ry_cells_build(&sim->cells, &sim->box, reach, ps->n, x, err));
+        else
+            ry_cells_permuted(&sim->cells);
     }
     sim->searches++;
     sim->nl_generation++;

@@ -201,7 +201,7 @@ static ry_status pcg_core(ry_csr *a, int m, const double *const b[], double *con
             o->done = 1;
             continue;
         }
-        if (dist) dist->sync(dist->ctx, o->x);
+        if (dist) dist->sync(dist->ctx, o->x, k);
         in[na] = o->x;
         out[na++] = o->q;
     }
@@ -235,7 +235,7 @@ static ry_status pcg_core(ry_csr *a, int m, const double *const b[], double *con
         for (int k = 0; k < m; ++k) {
             pcg_one *o = &s[k];
             if (o->done || !(o->rn > tol * o->bnorm && o->iters < max_iter)) continue;
-            if (dist) dist->sync(dist->ctx, o->p);
+            if (dist) dist->sync(dist->ctx, o->p, k);
             act[na] = o;
             in[na] = o->p;
             out[na++] = o->q;
@@ -312,12 +312,12 @@ ry_status ry_csr_pcg(ry_csr *a, const double *b, double *x, double tol, int max_
     return ry_csr_pcg_multi(a, 1, &b, &x, tol, max_iter, iters, resid, dist, err);
 }
 
-static void particle_sync(void *ctx, double *v) {
+static void particle_sync(void *ctx, double *v, int k) {
     ry_particle_unknowns *pu = ctx;
     ry_sim *sim = (ry_sim *)pu->sim;
     const size_t n = sim->ps.n;
     for (size_t i = 0; i < n; ++i) pu->tmp[i] = pu->unk[i] >= 0 ? v[pu->unk[i]] : 0.0;
-    sim->par->sync(sim, pu->tmp, 1);
+    sim->par->sync(sim, pu->tmp, 1, pu->odd[k]);
     for (size_t i = 0; i < n; ++i)
         if (pu->unk[i] >= 0 && ry_sim_is_halo(sim, i)) v[pu->unk[i]] = pu->tmp[i];
 }

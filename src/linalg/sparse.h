@@ -74,7 +74,7 @@ void ry_csr_mul(const ry_csr *a, const double *x, double *y);
  * the processes. */
 typedef struct ry_csr_dist {
     const uint8_t *owned;
-    void (*sync)(void *ctx, double *v);
+    void (*sync)(void *ctx, double *v, int k); /* k: the system (ry_csr_pcg_multi's index) */
     double (*sum)(void *ctx, double v);
     void *ctx;
 } ry_csr_dist;
@@ -89,6 +89,9 @@ typedef struct ry_particle_unknowns {
     const int32_t *unk;
     uint8_t *own;
     double *tmp;
+    /* Per system: the axes whose mirror negates the unknowns (symmetry planes; 0 for a
+     * pressure, 1 << d for a velocity's component d). */
+    unsigned odd[RY_CSR_MAX_RHS];
 } ry_particle_unknowns;
 
 /* Fills own and *d for pu (which must live as long as *d is used) and returns d; NULL in a

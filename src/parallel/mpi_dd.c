@@ -316,8 +316,7 @@ static double par_sum(ry_sim *sim, double v) {
     return r;
 }
 
-/* Sends the packed values (nv per particle of the send lists) and unpacks the received ones
- * into the halo slots: the halo exchange between searches. */
+/* The halo exchange between searches: nv packed values per particle sent, received. */
 static double *halo_exchange(par *P, int nv) {
     double *recv = rbuf(P, P->nrecv * (size_t)nv);
     int nreq = 0;
@@ -339,8 +338,9 @@ static double *halo_exchange(par *P, int nv) {
     return recv;
 }
 
-static void par_sync(ry_sim *sim, double *a, int nc) {
+static void par_sync(ry_sim *sim, double *a, int nc, unsigned odd) {
     par *P = get(sim);
+    (void)odd; /* (no mirrors) */
     const double t0 = MPI_Wtime();
     double *send = sbuf(P, P->nsend * (size_t)nc);
     for (size_t k = 0; k < P->nsend; ++k)
@@ -349,6 +349,10 @@ static void par_sync(ry_sim *sim, double *a, int nc) {
     for (size_t k = 0; k < P->nrecv; ++k)
         for (int c = 0; c < nc; ++c) a[P->rslot[k] * (size_t)nc + c] = recv[k * (size_t)nc + c];
     P->st.halo_s += MPI_Wtime() - t0;
+}
+
+static void par_sync_field(ry_sim *sim, int k) {
+    par_sync(sim, sim->ps.f[k], 1, 0);
 }
 
 static int cmp_id(const void *a, const void *b) {
@@ -701,9 +705,10 @@ static ry_status par_checkpoint(ry_sim *sim, char *path, size_t path_size, ry_er
     return st;
 }
 
-static const ry_par_ops ops = {par_all,          par_max,         par_sum,       par_sync,
-                               par_redistribute, par_halo_update, par_permuted,  par_verdict,
-                               par_open_update,  par_output,      par_checkpoint};
+static const ry_par_ops ops = {par_all,        par_max,          par_sum,     par_sync,
+                               par_sync_field, par_redistribute, NULL,        par_halo_update,
+                               NULL,           par_permuted,     par_verdict, par_open_update,
+                               par_output,     par_checkpoint};
 
 /* Puts a set in id order and checks that no id is repeated. */
 static ry_status ids_in_order(par *P, ry_particles *ps, ry_error *err) {
@@ -715,23 +720,20 @@ static ry_status ids_in_order(par *P, ry_particles *ps, ry_error *err) {
 }
 
 ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalance, ry_error *err) {
+    int nranks;
+    MPI_Comm_size(comm, &nranks);
+    const int periodic = sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2];
+    RY_CHECK(err, !sim->par && !(nranks > 1 && periodic), RY_ERR_INPUT,
+             "%s only so far; run with ryushi",
+             sim->par ? "symmetry planes (domain.symmetry) run in the serial program"
+                      : "periodic domains run on one rank");
     par *P = calloc(1, sizeof *P);
     RY_CHECK(err, P, RY_ERR_NOMEM, "out of memory");
     P->comm = comm;
     MPI_Comm_rank(comm, &P->rank);
-    MPI_Comm_size(comm, &P->size);
+    P->size = nranks;
     P->view = view;
     P->imbalance = imbalance;
-    ry_status st = RY_OK;
-    if (P->size > 1) {
-        if (sim->box.periodic[0] || sim->box.periodic[1] || sim->box.periodic[2])
-            st = ry_error_set(err, RY_ERR_INPUT,
-                              "periodic domains run on one rank only so far; run with ryushi");
-    }
-    if (st != RY_OK) {
-        free(P);
-        return st;
-    }
     const size_t size = (size_t)P->size;
     P->tree = calloc(2 * size, sizeof *P->tree);
     P->leaf = calloc(size, sizeof(int));

@@ -64,7 +64,7 @@ static void contact_angle(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc,
         for (int d = 0; d < dim; ++d)
             nrm[3 * i + d] = ln[i] * (cf->cos_theta * w[d] + cf->sin_theta * t[d] / nt);
     }
-    if (sim->par) sim->par->sync(sim, nrm, 3);
+    if (sim->par) sim->par->sync(sim, nrm, 3, 0);
 }
 
 ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, const double *delta,
@@ -104,7 +104,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         }
         cs[i] = sn / sd;
     }
-    if (sim->par) sim->par->sync(sim, cs, 1); /* halo copies: their owners' values */
+    if (sim->par) sim->par->sync(sim, cs, 1, 0); /* halo copies: their owners' values */
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) { /* normal n = grad c' */
         double g[3] = {0, 0, 0};
@@ -118,7 +118,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
             }
         for (int d = 0; d < 3; ++d) nrm[3 * i + d] = g[d];
     }
-    if (sim->par) sim->par->sync(sim, nrm, 3);
+    if (sim->par) sim->par->sync(sim, nrm, 3, 0);
     double *ln = nrm + 3 * n, *ks = nrm + 4 * n; /* |n| per particle; the average's output */
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
@@ -157,7 +157,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
     /* The curvature averaged over the interface particles, weighted by |n| W: smoothing
      * passes. */
     for (int pass = 0; pass < cf->smoothing; ++pass) {
-        if (sim->par) sim->par->sync(sim, kap, 1);
+        if (sim->par) sim->par->sync(sim, kap, 1, 0);
 #pragma omp parallel for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
             ks[i] = kap[i];

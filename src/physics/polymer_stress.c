@@ -25,6 +25,8 @@ ry_status ry_sph_rheo_init(ry_sph_rheo *r, ry_sim *sim, ry_error *err) {
     for (int k = 0; r->ob && k < ry_tau_count(sim->dim); ++k)
         RY_TRY(ry_particles_add_field(ps, ry_tau_name(sim->dim, k), "Pa", -1,
                                       RY_FIELD_STATE | RY_FIELD_OUTPUT, &r->f_tau[k], err));
+    for (int k = 0; r->ob && k < ry_tau_count(sim->dim); ++k)
+        ry_particles_set_parity(ps, r->f_tau[k], ry_tau_odd(sim->dim, k));
     /* Before the first rates: the viscosity at rest (the time step reads it). */
     for (size_t i = 0; i < ps->n; ++i) {
         const ry_material *mat = &sim->mat[ps->material[i]];
@@ -121,7 +123,7 @@ ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc
             if (a != b) acc[b] += gt[k][a] / rho[i];
         }
     }
-    if (sim->par) sim->par->sync(sim, ps->f[r->f_nu], 1);
+    if (sim->par) sim->par->sync_field(sim, r->f_nu);
     return RY_OK;
 }
 
@@ -139,7 +141,7 @@ void ry_sph_rheo_advance(ry_sph_rheo *r, ry_sim *sim, const int mobile[RY_KIND_C
         ry_polymer_step(dim, &mat->rheo, r->L + 9 * i, mat->density, dt, t);
         for (int k = 0; k < nt; ++k) ps->f[r->f_tau[k]][i] = t[k];
     }
-    for (int k = 0; sim->par && k < nt; ++k) sim->par->sync(sim, ps->f[r->f_tau[k]], 1);
+    for (int k = 0; sim->par && k < nt; ++k) sim->par->sync_field(sim, r->f_tau[k]);
 }
 
 double ry_sph_rheo_dt(const ry_sph_rheo *r, const ry_sim *sim, const int mobile[RY_KIND_COUNT],

@@ -119,6 +119,12 @@ void ry_tau_index(int dim, int k, int *a, int *b) {
     *b = tau_b[c];
 }
 
+unsigned ry_tau_odd(int dim, int k) {
+    int a, b;
+    ry_tau_index(dim, k, &a, &b);
+    return (1u << a) ^ (1u << b);
+}
+
 const char *ry_tau_name(int dim, int k) {
     static const char *const names[6] = {"tau_xx", "tau_yy", "tau_zz",
                                          "tau_xy", "tau_xz", "tau_yz"};

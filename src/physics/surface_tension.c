@@ -468,7 +468,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
     /* A distributed run: each pass reads its neighbours' results of the pass before, which
      * the halo copies take from their owners. */
     ry_sim *ms = (ry_sim *)sim;
-    if (sim->par) sim->par->sync(ms, gs, 3);
+    if (sim->par) sim->par->sync(ms, gs, 3, 0);
     /* RY_ST_CURV_SURFACE: the normal from g smoothed over the neighbours (weights w, the
      * particle itself 1). On a staircase (a lattice circle) or a disordered surface the single
      * g_i tilt back and forth with the particle's position, and a protruding particle, with the
@@ -497,7 +497,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         for (int d = 0; d < 3; ++d) nrm[3 * i + d] = d < dim ? -g[d] / gn : 0.0;
     }
     if (!isnan(st->contact_angle)) contact_normals(st, sim, nrm);
-    if (sim->par) sim->par->sync(ms, nrm, 3);
+    if (sim->par) sim->par->sync(ms, nrm, 3, 0);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         raw[i] = 0;
@@ -535,7 +535,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         const double kmax = (dim - 1) / (2.0 * st->l0);
         raw[i] = ok ? fmax(fmin(div, kmax), -kmax) : 0.0;
     }
-    if (sim->par) sim->par->sync(ms, raw, 1);
+    if (sim->par) sim->par->sync(ms, raw, 1, 0);
         /* Averaged over the neighbours that have a normal (weights w, the particle itself 1). */
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
@@ -557,7 +557,7 @@ void ry_st_curvature(const ry_surface_tension *st, const ry_sim *sim, double *ka
         }
         kappa[i] = ks / ws;
     }
-    if (sim->par) sim->par->sync(ms, kappa, 1);
+    if (sim->par) sim->par->sync(ms, kappa, 1, 0);
 }
 
 /* (1) The single curvatures are noisy enough to drive a 3D MPS drop at rest unstable (a drop of
@@ -596,7 +596,7 @@ void ry_st_laplace_pressure(const ry_surface_tension *st, const ry_sim *sim, con
             tmp[i] = ks / ws;
         }
         memcpy(pd, tmp, n * sizeof *pd);
-        if (sim->par) sim->par->sync((ry_sim *)sim, pd, 1);
+        if (sim->par) sim->par->sync((ry_sim *)sim, pd, 1, 0);
     }
     const double shift = st->l0 / (2.0 * (sim->dim - 1));
     for (size_t i = 0; i < n; ++i) pd[i] = st->sigma * pd[i] / (1.0 + fmax(pd[i], 0.0) * shift);

@@ -274,6 +274,7 @@ ry_status ry_sim_checkpoint_load(ry_sim *sim, const ry_ck_reader *r, ry_error *e
         sim->open[q].count = (long)v;
     }
     if (sim->writer) RY_TRY(ry_writer_load(sim, r, err));
+    sim->halo = NULL; /* a checkpoint holds no halo copies (symmetry planes' are made again) */
     return RY_OK;
 }
 

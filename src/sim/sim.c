@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "sim/symmetry.h"
 #include "sim/writer.h"
 #include "ryushi/geometry.h"
 #include "ryushi/sim.h"
@@ -101,6 +102,7 @@ static ry_status read_domain(ry_sim *sim, ry_case *c, ry_error *err) {
                      "%s: key '%s': periodic length must be at least two support radii",
                      ry_case_where(c, pk[d], where, sizeof where), pk[d]);
     }
+    RY_TRY(ry_symmetry_read(sim, c, err));
     for (size_t i = 0; i < ps->n; ++i)
         for (int d = 0; d < sim->dim; ++d) {
             double x = ps->f[RY_F_X + d][i];
@@ -396,7 +398,7 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     static const char *const xr[3] = {"xref_x", "xref_y", "xref_z"};
     for (int d = 0; d < 3; ++d) {
         int id;
-        RY_TRY(ry_particles_add_field(&sim->ps, xr[d], "m", d, 0, &id, err));
+        RY_TRY(ry_particles_add_field(&sim->ps, xr[d], "m", d, RY_FIELD_POSITION, &id, err));
         if (d == 0) sim->f_xref = id;
     }
 
@@ -436,10 +438,11 @@ ry_status ry_sim_setup(ry_sim *sim, ry_case *c, const char *out_dir, ry_error *e
     RY_TRY(check_probes(sim, c, err));
     ry_case_touch(c, "description");
     RY_TRY(ry_case_check_unused(c, err));
-    return RY_OK;
+    return ry_symmetry_attach(sim, err);
 }
 
 void ry_sim_free(ry_sim *sim) {
+    ry_symmetry_detach(sim);
     if (sim->scheme && sim->scheme->free) sim->scheme->free(sim->scheme_state);
     ry_writer_free(sim);
     ry_particles_free(&sim->ps);

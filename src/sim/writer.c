@@ -124,6 +124,11 @@ void ry_writer_free(ry_sim *sim) {
 }
 
 ry_status ry_output_write(ry_sim *sim, ry_error *err) {
+    RY_TRY(ry_output_write_vtk(sim, err));
+    return ry_output_write_series(sim, err);
+}
+
+ry_status ry_output_write_vtk(ry_sim *sim, ry_error *err) {
     writer *w = sim->writer;
     RY_CHECK(err, w != NULL, RY_ERR_INTERNAL, "output written before the writer was opened");
     char path[4096], name[512];
@@ -155,6 +160,13 @@ ry_status ry_output_write(ry_sim *sim, ry_error *err) {
         snprintf(path, sizeof path, "%s/%s.pvd", sim->out_dir, sim->case_name);
         RY_TRY(ry_pvd_write(path, w->n, w->files, w->times, err));
     }
+    return RY_OK;
+}
+
+ry_status ry_output_write_series(ry_sim *sim, ry_error *err) {
+    writer *w = sim->writer;
+    RY_CHECK(err, w != NULL, RY_ERR_INTERNAL, "output written before the writer was opened");
+    char path[4096];
     RY_TRY(csv_append(w, err, "%.10g,%ld,%.6g,%zu", sim->t, sim->step, sim->dt, sim->ps.n));
     for (int k = 0; k < sim->nprobes; ++k) {
         double v;

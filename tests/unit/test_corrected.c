@@ -59,7 +59,7 @@ static void make_cloud(cloud *c, int dim, int per_side, ry_kernel_type kt) {
     }
     ry_error err;
     assert_int_equal(ry_kernel_init(&c->k, kt, dim, 1.3 * dx, &err), RY_OK);
-    ry_box box = {dim, {-1, -1, -1}, {2, 2, 2}, {0, 0, 0}};
+    ry_box box = {.dim = dim, .lo = {-1, -1, -1}, .hi = {2, 2, 2}};
     const double *xs[3] = {c->x[0], c->x[1], dim > 2 ? c->x[2] : NULL};
     assert_int_equal(ry_nlist_build_brute(&c->nl, &box, c->k.radius, n, xs, &err), RY_OK);
 }

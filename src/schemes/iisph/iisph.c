@@ -293,7 +293,7 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
     }
     if (s->implicit) RY_TRY(iisph_viscous_implicit(sim, s, dt, err));
     if (sim->par)
-        for (int d = 0; d < dim; ++d) sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
+        for (int d = 0; d < dim; ++d) sim->par->sync_field(sim, RY_F_VX + d);
     /* 4. The pressure solve: the walls' extrapolation lists, the pairs, relaxed Jacobi. */
     RY_TRY(iisph_wall_map_build(sim, s, &s->wm, ps->f[RY_F_P], RY_MAP_WALL, err));
     if (s->light_on) {
@@ -328,8 +328,8 @@ static ry_status iisph_step(ry_sim *sim, void *state, double dt, ry_error *err) 
      * the neighbour list of this step still reaches 0.85 dx. */
     if (sim->par && s->coll_r > 0)
         for (int d = 0; d < dim; ++d) {
-            sim->par->sync(sim, ps->f[RY_F_X + d], 1);
-            sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
+            sim->par->sync_field(sim, RY_F_X + d);
+            sim->par->sync_field(sim, RY_F_VX + d);
         }
     ry_collisions(sim, s->coll_r, s->coll_e, dt, NULL, NULL, s->acc);
     s->vmax = sqrt(vmax2);

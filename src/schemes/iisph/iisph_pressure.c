@@ -210,9 +210,9 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
     /* A distributed run: a pass that reads its neighbours' results of the pass before gets
      * the halo copies' values from their owners first; the error is summed over all ranks. */
     if (sim->par) {
-        sim->par->sync(sim, s->dii, 3);
-        sim->par->sync(sim, s->aii, 1);
-        sim->par->sync(sim, s->dstar, 1);
+        sim->par->sync(sim, s->dii, 3, 0);
+        sim->par->sync(sim, s->aii, 1, 0);
+        sim->par->sync(sim, s->dstar, 1, 0);
         nfluid = sim->par->sum(sim, nfluid);
         nlight = sim->par->sum(sim, nlight);
     }
@@ -221,13 +221,13 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
     double avg = 0;
     while (it < s->max_iter) {
         iisph_wall_extrapolate(&s->wm, p, p);
-        if (sim->par) sim->par->sync(sim, p, 1);
+        if (sim->par) sim->par->sync(sim, p, 1, 0);
         if (s->light_on) {
             iisph_wall_extrapolate(&s->wml, p, s->pl);
-            if (sim->par) sim->par->sync(sim, s->pl, 1);
+            if (sim->par) sim->par->sync(sim, s->pl, 1, 0);
         }
         pressure_sums(sim, s, p, dt2);
-        if (sim->par) sim->par->sync(sim, s->sum, 3);
+        if (sim->par) sim->par->sync(sim, s->sum, 3, 0);
         double *perr = s->perr;
 #pragma omp parallel for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
@@ -263,7 +263,7 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
         }
         memcpy(p, pnew, n * sizeof *p);
         if (sim->par) {
-            sim->par->sync(sim, p, 1);
+            sim->par->sync(sim, p, 1, 0);
             esum = sim->par->sum(sim, esum);
             if (s->light_on) lsum = sim->par->sum(sim, lsum);
         }

@@ -121,7 +121,7 @@ ry_status iisph_densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
                 if (!pair_skip(s, i, s->pc.j[q])) sw += cv[q * RY_PAIR_STRIDE + RY_PW_W];
         delta[i] = sw;
     }
-    if (sim->par) sim->par->sync(sim, delta, 1); /* halo copies: their owners' values */
+    if (sim->par) sim->par->sync(sim, delta, 1, 0); /* halo copies: their owners' values */
     for (size_t i = 0; i < n; ++i)
         if (MOBILE[kind[i]]) ps->f[RY_F_RHO][i] = m[i] * delta[i];
     viscous_velocities(sim, s);
@@ -179,7 +179,7 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
     /* distributed: each process holds rows for its own and its halo's particles and the solver
      * uses its own only (NULL in a serial run) */
     ry_csr_dist dist;
-    s->vpu = (ry_particle_unknowns){sim, s->unk, s->vown, s->vtmp};
+    s->vpu = (ry_particle_unknowns){sim, s->unk, s->vown, s->vtmp, {1u, 2u, 4u}};
     const ry_csr_dist *dd = ry_particle_dist(&s->vpu, &dist);
     s->viters_last = 0;
     if (nunk == 0 && !dd) return RY_OK; /* (distributed: the others' sums need this process) */

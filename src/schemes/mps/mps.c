@@ -316,8 +316,8 @@ static ry_status mps_step(ry_sim *sim, void *state, double dt, ry_error *err) {
     M->st.pair_j = NULL;           /* the pairs are of x*, the particles now elsewhere */
     if (sim->par && M->coll_r > 0) /* the collisions read the corrected neighbours */
         for (int d = 0; d < dim; ++d) {
-            sim->par->sync(sim, ps->f[RY_F_X + d], 1);
-            sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
+            sim->par->sync_field(sim, RY_F_X + d);
+            sim->par->sync_field(sim, RY_F_VX + d);
         }
     /* the pairs within re_g (M->pj up to gend); xs: dim n doubles of scratch */
     ry_collisions(sim, M->coll_r, M->coll_e, dt, M->pj, M->gend, M->xs);

@@ -197,7 +197,7 @@ ry_status mps_colour_accelerate(ry_sim *sim, mps *M, double *const a[3], ry_erro
 void mps_csf_dirichlet(ry_sim *sim, mps *M);
 
 /* mps_pressure.c: the linear systems, the pressure Poisson equation and the correction */
-const ry_csr_dist *mps_dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d);
+const ry_csr_dist *mps_dist_of(const ry_sim *sim, mps *M, int velocity, ry_csr_dist *d);
 ry_amg_slots mps_slots(const ry_sim *sim, mps *M);
 ry_status mps_assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double dt, double diag_extra,
                        ry_error *err);

@@ -16,9 +16,12 @@
 
 /* A distributed run (sim->par): the linear systems span the ranks. Vectors of unknowns reach
  * the halo copies through the particles. */
-/* The distribution of the current unknowns (NULL in a serial run). */
-const ry_csr_dist *mps_dist_of(const ry_sim *sim, mps *M, ry_csr_dist *d) {
-    M->pu = (ry_particle_unknowns){sim, M->unk, M->own, M->ptmp};
+/* The distribution of the current unknowns (NULL in a serial run): a pressure's, or with
+ * velocity the velocity's components (system d: component d, which a mirror across axis d
+ * negates). */
+const ry_csr_dist *mps_dist_of(const ry_sim *sim, mps *M, int velocity, ry_csr_dist *d) {
+    M->pu = (ry_particle_unknowns){sim, M->unk, M->own, M->ptmp, {0}};
+    for (int k = 0; velocity && k < RY_CSR_MAX_RHS; ++k) M->pu.odd[k] = 1u << k;
     return ry_particle_dist(&M->pu, d);
 }
 
@@ -116,7 +119,7 @@ static void surface_head(ry_sim *sim, mps *M) {
         if (nin > 0 && gin > 0)
             M->pd[i] += 0.5 * l0 * sim->mat[ps->material[i]].density * gin / sqrt(nin);
     }
-    if (sim->par) sim->par->sync(sim, M->pd, 1);
+    if (sim->par) sim->par->sync(sim, M->pd, 1, 0);
 }
 
 /* The aggregates of the deflated pressure solve: the unknowns grouped by the cubes of side
@@ -248,7 +251,7 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
                                    &res, err));
     } else {
         RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->tol, (int)M->max_iter, &it, &res,
-                          mps_dist_of(sim, M, &dd), err));
+                          mps_dist_of(sim, M, 0, &dd), err));
     }
     M->psolve_s += ry_wall_time() - t0;
     M->psolves++;
@@ -261,10 +264,10 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         if (M->clamp && v < 0) v = 0;
         p[i] = v;
     }
-    if (sim->par) sim->par->sync(sim, p, 1);
+    if (sim->par) sim->par->sync(sim, p, 1, 0);
     if (M->wall_extrapolate || M->thin_neumann) {
         mps_extrapolate_walls(sim, M);
-        if (sim->par) sim->par->sync(sim, p, 1);
+        if (sim->par) sim->par->sync(sim, p, 1, 0);
     }
     return RY_OK;
 }

@@ -163,7 +163,7 @@ ry_status mps_colour_accelerate(ry_sim *sim, mps *M, double *const a[3], ry_erro
         M->cdelta[i] = sw;
         M->cacc[3 * i] = M->cacc[3 * i + 1] = M->cacc[3 * i + 2] = 0;
     }
-    if (sim->par) sim->par->sync(sim, M->cdelta, 1);
+    if (sim->par) sim->par->sync(sim, M->cdelta, 1, 0);
     RY_TRY(ry_colour_force(&M->colour, sim, &M->pc, M->cdelta, mobile, M->cacc, err));
     for (size_t i = 0; i < n; ++i)
         if (ps->kind[i] == RY_KIND_FLUID)

@@ -36,6 +36,8 @@ ry_status mps_rheology_init(ry_sim *sim, mps *M, ry_error *err) {
     for (int k = 0; M->rheo_ob && k < ry_tau_count(sim->dim); ++k)
         RY_TRY(ry_particles_add_field(ps, ry_tau_name(sim->dim, k), "Pa", -1,
                                       RY_FIELD_STATE | RY_FIELD_OUTPUT, &M->f_tau[k], err));
+    for (int k = 0; M->rheo_ob && k < ry_tau_count(sim->dim); ++k)
+        ry_particles_set_parity(ps, M->f_tau[k], ry_tau_odd(sim->dim, k));
     return RY_OK;
 }
 
@@ -108,7 +110,7 @@ void mps_rheology_explicit(ry_sim *sim, mps *M, double dt) {
                 for (int b = 0; b < 3; ++b)
                     M->vgrad[9 * i + 3 * a + b] = a < dim && b < dim ? L[a][b] : 0.0;
     }
-    if (sim->par) sim->par->sync(sim, ps->f[M->f_nu], 1);
+    if (sim->par) sim->par->sync_field(sim, M->f_nu);
     if (!M->rheo_ob) return;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
@@ -135,7 +137,7 @@ void mps_rheology_explicit(ry_sim *sim, mps *M, double dt) {
         ry_polymer_step(dim, &mat->rheo, &M->vgrad[9 * i], mat->density, dt, t);
         for (int k = 0; k < nt; ++k) ps->f[M->f_tau[k]][i] = t[k];
     }
-    for (int k = 0; sim->par && k < nt; ++k) sim->par->sync(sim, ps->f[M->f_tau[k]], 1);
+    for (int k = 0; sim->par && k < nt; ++k) sim->par->sync_field(sim, M->f_tau[k]);
 }
 
 /* The viscous pair sums of fluid particle i: s = sum_j nu_ij w_ij (v_j - v_i) (times beta
@@ -271,7 +273,7 @@ ry_status mps_viscous_implicit(ry_sim *sim, mps *M, double dt, int with_st, ry_e
             ry_amg_pcg(&M->vamg, &M->A, &sl, dim, bs, xv, M->vtol, (int)M->max_iter, it, res, err));
     } else
         RY_TRY(ry_csr_pcg_multi(&M->A, dim, bs, xv, M->vtol, (int)M->max_iter, it, res,
-                                mps_dist_of(sim, M, &dd), err));
+                                mps_dist_of(sim, M, 1, &dd), err));
     M->vsolve_s += ry_wall_time() - t0;
     M->vsolves++;
     M->last_viters = 0;

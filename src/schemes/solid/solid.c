@@ -95,9 +95,12 @@ static ry_status load_forces(ry_sim *sim, solid *s, ry_error *err) {
     RY_TRY(ry_beam_geometry(sim, &b, err));
     double *count = calloc((size_t)b.ncol, sizeof *count);
     RY_CHECK(err, count != NULL, RY_ERR_NOMEM, "out of memory");
+    /* symmetry planes: the load is the whole problem's (the beam with its mirror images) */
+    const double whole = ry_box_mirrors(&sim->box);
+    b.area *= whole;
     for (size_t i = 0; i < ps->n; ++i)
         if (ps->kind[i] == RY_KIND_SOLID)
-            count[ry_beam_column(&b, sim->dx, ps->f[s->f_X[0]][i])] += 1;
+            count[ry_beam_column(&b, sim->dx, ps->f[s->f_X[0]][i])] += whole;
     const double pi = 3.14159265358979323846;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_SOLID) continue;
@@ -250,7 +253,8 @@ static ry_status solid_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     static const char *const fn[3] = {"load_x", "load_y", "load_z"};
     static const char *const un[3] = {"displacement_x", "displacement_y", "displacement_z"};
     for (int d = 0; d < 3; ++d) {
-        RY_TRY(ry_particles_add_field(ps, Xn[d], "m", d, RY_FIELD_STATE, &s->f_X[d], err));
+        RY_TRY(ry_particles_add_field(ps, Xn[d], "m", d, RY_FIELD_STATE | RY_FIELD_POSITION,
+                                      &s->f_X[d], err));
         RY_TRY(ry_particles_add_field(ps, fn[d], "N", d, RY_FIELD_STATE, &s->f_fext[d], err));
         RY_TRY(ry_particles_add_field(ps, un[d], "m", d, RY_FIELD_OUTPUT, &s->f_u[d], err));
     }

@@ -184,15 +184,17 @@ static const fast_driver fast_drivers[RY_KERNEL_COUNT][2][2][2] = {
 #undef RY_FAST_DRIVER_
 
 /* Whether the cell-range loop serves this case (every kernel, the energy equation, variable h):
- * no periodic directions, transport velocity or open boundaries (whose buffers change the
- * particle set between searches), rheology or surface tension. */
+ * no periodic directions, symmetry planes, transport velocity or open boundaries (whose buffers
+ * change the particle set between searches), rheology or surface tension. */
 int wc_fast_eligible(const ry_sim *sim, const wcsph *w, const char **why) {
-    *why = is_periodic(sim)            ? "no periodic directions"
-           : w->tvf                    ? "no transport_velocity"
-           : sim->nopen > 0            ? "no open boundaries"
-           : w->rheo.on                ? "Newtonian materials"
-           : w->st.model != RY_ST_NONE ? "no surface_tension"
-                                       : NULL;
+    const ry_box *b = &sim->box;
+    *why = is_periodic(sim)                                     ? "no periodic directions"
+           : b->symmetry[0] || b->symmetry[1] || b->symmetry[2] ? "no symmetry planes"
+           : w->tvf                                             ? "no transport_velocity"
+           : sim->nopen > 0                                     ? "no open boundaries"
+           : w->rheo.on                                         ? "Newtonian materials"
+           : w->st.model != RY_ST_NONE                          ? "no surface_tension"
+                                                                : NULL;
     return *why == NULL;
 }
 

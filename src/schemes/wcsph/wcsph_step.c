@@ -452,8 +452,8 @@ ry_status wc_step(ry_sim *sim, void *state, double dt, ry_error *err) {
         RY_TRY(ry_st_work_ensure(&w->stw, sim->ps.n, err));
         if (sim->par)
             for (int d = 0; d < dim; ++d) {
-                sim->par->sync(sim, ps->f[RY_F_X + d], 1);
-                sim->par->sync(sim, ps->f[RY_F_VX + d], 1);
+                sim->par->sync_field(sim, RY_F_X + d);
+                sim->par->sync_field(sim, RY_F_VX + d);
             }
         ry_collisions(sim, w->coll_r, w->coll_e, dt, NULL, NULL, w->stw.p);
     }
