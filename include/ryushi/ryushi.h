@@ -67,7 +67,8 @@ RY_API double ry_sim_time(const ry_sim *sim);
 RY_API double ry_sim_end_time(const ry_sim *sim);
 RY_API long ry_sim_step_count(const ry_sim *sim);
 RY_API int ry_sim_dimension(const ry_sim *sim);
-/* Particles of every kind (fluid, wall, solid, inflow and outflow buffers). */
+/* Particles of every kind (fluid, wall, solid, inflow and outflow buffers); with symmetry
+ * planes, those simulated (not their mirror images), as for the fields below. */
 RY_API size_t ry_sim_count(const ry_sim *sim);
 RY_API const char *ry_sim_scheme(const ry_sim *sim);
 RY_API const char *ry_sim_output_dir(const ry_sim *sim);
@@ -85,7 +86,7 @@ RY_API int ry_sim_field_names(const ry_sim *sim, const char **names, int max);
 /* The unit of a field ("m", "m/s", "kg/m^3", "1"; NULL for an unknown name). */
 RY_API const char *ry_sim_field_unit(const ry_sim *sim, const char *name);
 /* A measured quantity by name, as `ryushi probes` lists them (the first value of a probe with
- * several). */
+ * several); with symmetry planes, the whole problem's, as in series.csv. */
 RY_API int ry_sim_probe(ry_sim *sim, const char *name, double *value);
 /* The probes by index from 0 (NULL past the last): the name ry_sim_probe takes and a line on
  * what it measures, as `ryushi probes` lists them. */

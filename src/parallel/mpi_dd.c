@@ -774,14 +774,14 @@ ry_status ry_mpi_attach(ry_sim *sim, ry_sim *view, MPI_Comm comm, double imbalan
 
 void ry_mpi_get_stats(const ry_sim *sim, ry_mpi_stats *s) {
     memset(s, 0, sizeof *s);
-    if (sim->par_state) *s = get(sim)->st;
+    if (sim->par == &ops) *s = get(sim)->st;
     s->comm_s = s->redist_s + s->halo_s + s->reduce_s;
-    if (sim->par_state) s->fields = get(sim)->nf;
+    if (sim->par == &ops) s->fields = get(sim)->nf;
 }
 
 void ry_mpi_detach(ry_sim *sim) {
     par *P = get(sim);
-    if (!P) return;
+    if (!P || sim->par != &ops) return; /* (not attached: a serial run's hooks, or none) */
     free(P->tree);
     free(P->leaf);
     free(P->fid);

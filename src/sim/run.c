@@ -10,6 +10,7 @@
 #include "ryushi/clock.h"
 #include "ryushi/open_boundary.h"
 #include "ryushi/run.h"
+#include "sim/symmetry.h"
 
 /* A checkpoint due after this step by the case's policy: 1 on the simulated schedule
  * (interval, every_steps), 2 by the wall clock alone, 0 none. */
@@ -56,7 +57,12 @@ static void keep_last_good(ry_sim *sim, const ry_run_hooks *hooks, ry_error *err
         if (st == RY_OK && sim->step != lg->good_step)
             st = ry_error_set(&e, RY_ERR_INTERNAL, "the replay from %s ended at step %ld", lg->ckpt,
                               sim->step);
-        if (st == RY_OK) st = ry_sim_last_good_write(sim, path, sizeof path, &e);
+        if (st == RY_OK) {
+            ry_symmetry_hidden h; /* (the simulated particles, without their mirror copies) */
+            ry_symmetry_hide(sim, &h);
+            st = ry_sim_last_good_write(sim, path, sizeof path, &e);
+            ry_symmetry_show(sim, &h);
+        }
     } else {
         st = ry_sim_snapshot_write(sim, path, sizeof path, &e);
     }
@@ -122,7 +128,8 @@ static ry_status run_loop(ry_sim *sim, const ry_run_hooks *hooks, ry_run_stats *
         lg->ck_step = -1;
         lg->ckpt[0] = '\0';
         if (snap_every > 0) RY_TRY(ry_sim_snapshot_take(sim, err));
-        if (!sim->par && sim->guard.last_good == RY_LAST_GOOD_REPLAY) {
+        if ((!sim->par || sim->par->redistribute_at_ref) && /* (a serial run's hooks) */
+            sim->guard.last_good == RY_LAST_GOOD_REPLAY) {
             /* the state a replay starts from (not counted in the run's speed) */
             double w = ry_wall_time();
             sim->ckpt.scheduled = 0;

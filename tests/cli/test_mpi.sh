@@ -244,6 +244,9 @@ expect 2 "RY_MPI_IMBALANCE: expected a number from 1 up, got '0.5'" \
 unset RY_MPI_IMBALANCE
 expect 2 "periodic domains run on one rank only so far" \
     mpirun --oversubscribe -np 2 "$RYM" run "$DAM" -o "$T/per" --set domain.periodic_x=true
+expect 2 "symmetry planes (domain.symmetry) run in the serial program only so far" \
+    mpirun --oversubscribe -np 1 "$RYM" run "$DAM" -o "$T/sym" --set domain.lo=[0,-0.1] \
+    --set domain.symmetry=[x_lo]
 
 printf "mpi tests: "
 finish
