@@ -138,6 +138,11 @@ typedef struct ry_par_ops {
     /* Output (VTK, .pvd entry, series.csv row) and checkpoints of the whole set. */
     ry_status (*output)(ry_sim *sim, ry_error *err);
     ry_status (*checkpoint)(ry_sim *sim, char *path, size_t path_size, ry_error *err);
+    /* A serial run's halo (symmetry planes' mirror copies; NULL in a distributed run): for a
+     * copy i, its original's index and the axes of the mirror between them (non-zero
+     * returned); 0 for a particle of the set. A linear system may then fold a copy's
+     * coefficient onto its original's unknown and be solved by one process. */
+    int (*copy_of)(const ry_sim *sim, size_t i, size_t *orig, unsigned *axes);
 } ry_par_ops;
 
 /* A measured quantity written as a column of series.csv. A probe of an item of a case section
@@ -345,7 +350,14 @@ struct ry_sim {
     int halo_depth;
 };
 
-/* Whether particle i is a halo copy of another rank's particle (never in a serial run). */
+/* Whether the run is spread over processes (ryushi-mpi), rather than serial (with or
+ * without symmetry planes' hooks). */
+static inline int ry_sim_distributed(const ry_sim *sim) {
+    return sim->par && !sim->par->copy_of;
+}
+
+/* Whether particle i is a halo copy: of another rank's particle, or a symmetry plane's mirror copy.
+ */
 static inline int ry_sim_is_halo(const ry_sim *sim, size_t i) {
     return sim->halo && sim->halo[i];
 }

@@ -708,7 +708,7 @@ static ry_status par_checkpoint(ry_sim *sim, char *path, size_t path_size, ry_er
 static const ry_par_ops ops = {par_all,        par_max,          par_sum,     par_sync,
                                par_sync_field, par_redistribute, NULL,        par_halo_update,
                                NULL,           par_permuted,     par_verdict, par_open_update,
-                               par_output,     par_checkpoint};
+                               par_output,     par_checkpoint,   NULL};
 
 /* Puts a set in id order and checks that no id is repeated. */
 static ry_status ids_in_order(par *P, ry_particles *ps, ry_error *err) {

@@ -290,6 +290,14 @@ static ry_status sym_open_update(ry_sim *sim, ry_error *err) {
     return st;
 }
 
+static int sym_copy_of(const ry_sim *sim, size_t i, size_t *orig, unsigned *axes) {
+    const mirror *M = get(sim);
+    if (!sim->halo || i < M->nown || i >= M->nown + M->ncopy) return 0;
+    *orig = M->src[i - M->nown];
+    *axes = M->axes[M->set[i - M->nown]];
+    return 1;
+}
+
 static int is_mirror(const ry_sim *sim) {
     return sim->par && sim->par->partition == sym_partition;
 }
@@ -428,7 +436,8 @@ static const ry_par_ops ops = {.all = sym_all,
                                .verdict = sym_verdict,
                                .open_update = sym_open_update,
                                .output = sym_output,
-                               .checkpoint = sym_checkpoint};
+                               .checkpoint = sym_checkpoint,
+                               .copy_of = sym_copy_of};
 
 size_t ry_symmetry_owned(const ry_sim *sim) {
     return is_mirror(sim) && sim->halo ? get(sim)->nown : sim->ps.n;

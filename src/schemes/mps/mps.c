@@ -142,6 +142,7 @@ static void mps_free(void *state) {
     free(M->dmap);
     free(M->unk);
     free(M->uslot);
+    free(M->ucol);
     free(M->role);
     free(M->cline);
     free(M->b);
@@ -182,6 +183,8 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
     if (u) M->unk = u;
     int32_t *us = realloc(M->uslot, c * sizeof *us);
     if (us) M->uslot = us;
+    int32_t *uc = realloc(M->ucol, c * sizeof *uc);
+    if (uc) M->ucol = uc;
     uint8_t *r = realloc(M->role, c * sizeof *r);
     if (r) M->role = r;
     double *b = realloc(M->b, 3 * c * sizeof *b);
@@ -240,7 +243,7 @@ static ry_status scratch(mps *M, size_t n, ry_error *err) {
         if (cr) M->cut_row = cr;
     }
     RY_CHECK(err,
-             u && us && r && b && x && pd && o && ns && dv && t && ge && le &&
+             u && us && uc && r && b && x && pd && o && ns && dv && t && ge && le &&
                  (vg || !M->rheo_ob) && (wv || M->wall_mode != WALLV_MIRRORED) &&
                  (cl || !M->cl_slip) && (wg || !M->body_group) &&
                  ((th && tv && tp && to && cr) || !M->body_thin),

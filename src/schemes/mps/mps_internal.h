@@ -78,6 +78,7 @@ typedef struct mps {
     ry_amg amg, vamg;      /* with boomeramg: the pressure's and the viscosity's solver */
     int32_t *unk;          /* unknown index per particle, -1 if none */
     int32_t *uslot;        /* with boomeramg: the particle of each unknown */
+    int32_t *ucol;         /* symmetry planes: a particle's column in the pressure's rows */
     uint8_t *role;
     uint8_t *cline; /* with cl_slip: 1 for a fluid particle with another liquid near */
     double *b, *xs;
@@ -200,7 +201,7 @@ void mps_csf_dirichlet(ry_sim *sim, mps *M);
 const ry_csr_dist *mps_dist_of(const ry_sim *sim, mps *M, int velocity, ry_csr_dist *d);
 ry_amg_slots mps_slots(const ry_sim *sim, mps *M);
 ry_status mps_assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double dt, double diag_extra,
-                       ry_error *err);
+                       const int32_t *col, ry_error *err);
 ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err);
 void mps_correct(ry_sim *sim, mps *M, double dt);
 

@@ -52,41 +52,106 @@ static int couple_viscous(const ry_sim *sim, const mps *M, size_t i, size_t j, d
     return 1;
 }
 
+/* The coefficient of the pair (i, j) of the Laplacian (zero where the pair does not couple). */
+static inline double pair_coef(const ry_sim *sim, const mps *M, size_t i, size_t q, int viscous,
+                               double dt, double cl) {
+    const uint32_t j = M->pj[q];
+    double coef = 0;
+    if (viscous ? couple_viscous(sim, M, i, j, &coef, dt)
+                : couple_pressure(sim, M, i, j, &coef, dt))
+        return cl * coef * ry_mps_weight_tamai(M->pr[q], M->re_l);
+    return 0;
+}
+
+/* Row i's columns folded from symmetry planes' copies (col[j] their originals'): those of the
+ * set's own neighbours, then the copies' not among them and not i's own (which folds onto the
+ * diagonal); into cols (room for the row), their number returned. */
+static size_t folded_columns(const ry_sim *sim, const mps *M, size_t i, const int32_t *col,
+                             uint32_t *cols) {
+    size_t c = 0;
+    for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q)
+        if (col[M->pj[q]] >= 0 && !ry_sim_is_halo(sim, M->pj[q]))
+            cols[c++] = (uint32_t)col[M->pj[q]];
+    for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
+        const int32_t k = col[M->pj[q]];
+        if (k < 0 || !ry_sim_is_halo(sim, M->pj[q]) || k == M->unk[i]) continue;
+        size_t e = 0;
+        while (e < c && cols[e] != (uint32_t)k) ++e;
+        if (e == c) cols[c++] = (uint32_t)k;
+    }
+    return c;
+}
+
 /* Assembles the rows of the unknowns (unk[i] >= 0) from the Laplacian pairs: for each pair
  * (i, j) within re_l that couple_pressure or, where `viscous`, couple_viscous accepts,
  * coefficient c w_ij on the diagonal and -c w_ij off it when j is an unknown too (pairs beyond
  * re_l make no entry); diag_extra is added to every diagonal. coef(i, j) scales c w_ij (1 for
  * the pressure, dt nu_ij for the viscosity). (A flag rather than a function pointer: the
- * coefficient inlines into the loop.) */
+ * coefficient inlines into the loop.) With fold (symmetry planes, a quantity their mirrors
+ * keep), j's unknown is col[j]: a copy's coefficient goes to its original's unknown, i's own
+ * image's to the diagonal (A->diag keeps the unfolded diagonal, the Jacobi preconditioner's:
+ * the solve is then the whole problem's, restricted to its symmetric part). */
 ry_status mps_assemble(ry_sim *sim, mps *M, size_t nunk, int viscous, double dt, double diag_extra,
-                       ry_error *err) {
+                       const int32_t *col, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
-    const double re = M->re_l, cl = ry_mps_laplacian_coefficient(sim->dim, M->lambda, M->n0l);
+    const int fold = col != NULL;
+    if (!fold) col = M->unk;
+    const double cl = ry_mps_laplacian_coefficient(sim->dim, M->lambda, M->n0l);
+    size_t rowmax = 1;
+    for (size_t i = 0; fold && i < n; ++i)
+        if (M->lend[i] - sim->nl.offset[i] + 1 > rowmax)
+            rowmax = M->lend[i] - sim->nl.offset[i] + 1;
     /* Row lengths (diagonal included) in parallel, their offsets, then the rows. */
     ry_csr *A = &M->A;
     RY_TRY(ry_csr_reserve(A, nunk, 0, err));
-#pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = 0; i < n; ++i) {
-        if (M->unk[i] < 0) continue;
-        size_t len = 1;
-        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) len += M->unk[M->pj[q]] >= 0;
-        A->row[(size_t)M->unk[i] + 1] = len;
+    int ok = 1;
+#pragma omp parallel reduction(&& : ok)
+    {
+        uint32_t *cols = fold ? malloc(rowmax * sizeof *cols) : NULL;
+        ok = !fold || cols;
+#pragma omp for schedule(dynamic, 256)
+        for (size_t i = 0; i < n; ++i) {
+            if (M->unk[i] < 0 || !ok) continue;
+            size_t len = 1;
+            if (fold)
+                len += folded_columns(sim, M, i, col, cols);
+            else
+                for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) len += col[M->pj[q]] >= 0;
+            A->row[(size_t)M->unk[i] + 1] = len;
+        }
+        free(cols);
     }
+    RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (pressure rows)");
     RY_TRY(ry_csr_rows_from_lengths(A, err));
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (M->unk[i] < 0) continue;
         ry_csr_row row = ry_csr_row_begin(A, (size_t)M->unk[i], diag_extra);
-        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
-            const uint32_t j = M->pj[q];
-            double coef = 0, a = 0;
-            if (viscous ? couple_viscous(sim, M, i, j, &coef, dt)
-                        : couple_pressure(sim, M, i, j, &coef, dt))
-                a = cl * coef * ry_mps_weight_tamai(M->pr[q], re);
-            ry_csr_row_pair(&row, a, M->unk[j]);
+        for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q)
+            if (!fold || !ry_sim_is_halo(sim, M->pj[q]))
+                ry_csr_row_pair(&row, pair_coef(sim, M, i, q, viscous, dt, cl), col[M->pj[q]]);
+        double self = 0; /* i's own image's coefficient */
+        for (size_t q = sim->nl.offset[i]; fold && q < M->lend[i]; ++q) {
+            const int32_t k = col[M->pj[q]];
+            if (!ry_sim_is_halo(sim, M->pj[q])) continue;
+            const double a = pair_coef(sim, M, i, q, viscous, dt, cl);
+            if (k < 0 || k != M->unk[i]) {
+                size_t e = row.pdiag + 1;
+                while (k >= 0 && e < row.p && A->col[e] != (uint32_t)k) ++e;
+                if (k >= 0 && e < row.p) { /* the column of an own neighbour, or of a copy */
+                    A->val[e] -= a;
+                    row.diag += a;
+                } else {
+                    ry_csr_row_pair(&row, a, k);
+                }
+            } else {
+                row.diag += a;
+                self += a;
+            }
         }
         ry_csr_row_end(&row);
+        A->val[row.pdiag] -= self;
     }
     return RY_OK;
 }
@@ -185,11 +250,20 @@ static ry_status aggregates(const ry_sim *sim, mps *M, size_t nunk, ry_error *er
 ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
+    /* Symmetry planes: the unknowns are the set's own, a copy's column its original's (the
+     * pressure is even across a mirror), and the system is solved in one piece. */
+    const int fold = sim->par && !ry_sim_distributed(sim);
     size_t nunk = 0;
     for (size_t i = 0; i < n; ++i)
-        M->unk[i] = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) && !thin_out(M, i)
+        M->unk[i] = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) && !thin_out(M, i) &&
+                            !(fold && ry_sim_is_halo(sim, i))
                         ? (int32_t)nunk++
                         : -1;
+    for (size_t i = 0; fold && i < n; ++i) {
+        size_t o;
+        unsigned axes;
+        M->ucol[i] = sim->par->copy_of(sim, i, &o, &axes) ? M->unk[o] : M->unk[i];
+    }
     /* Compressibility (Ikeda et al. 2001): rho alpha / dt^2 p on the diagonal, with the
      * largest density (a bound; exact for one material). */
     double rho_max = 0;
@@ -202,7 +276,8 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
                  "MPS: no free-surface particle, so the pressure equation has no reference value "
                  "(a closed or periodic domain): set scheme.compressibility (e.g. 1e-9 1/Pa)");
     }
-    RY_TRY(mps_assemble(sim, M, nunk, 0, dt, M->alpha * rho_max / (dt * dt), err));
+    RY_TRY(mps_assemble(sim, M, nunk, 0, dt, M->alpha * rho_max / (dt * dt), fold ? M->ucol : NULL,
+                        err));
     const double *nd = ps->f[M->f_nd];
     const double g = M->gamma;
     /* Dirichlet values: 0, or the Laplace jump sigma kappa with CSF in pressure form; plus,
@@ -239,19 +314,19 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     double res;
     ry_csr_dist dd;
     const double t0 = ry_wall_time();
-    if (M->precond == RY_PRECOND_BOOMERAMG && !sim->par) {
+    if (M->precond == RY_PRECOND_BOOMERAMG && !ry_sim_distributed(sim)) {
         const double *bb = M->b;
         const ry_amg_slots sl = mps_slots(sim, M);
         RY_TRY(ry_amg_pcg(&M->amg, &M->A, &sl, 1, &bb, &M->xs, M->tol, (int)M->max_iter, &it, &res,
                           err));
-    } else if (M->defl > 0 && !sim->par) {
+    } else if (M->defl > 0 && !ry_sim_distributed(sim)) {
         const double *bb = M->b;
         RY_TRY(aggregates(sim, M, nunk, err));
         RY_TRY(ry_csr_pcg_deflated(&M->A, 1, &bb, &M->xs, &M->D, M->tol, (int)M->max_iter, &it,
                                    &res, err));
     } else {
         RY_TRY(ry_csr_pcg(&M->A, M->b, M->xs, M->tol, (int)M->max_iter, &it, &res,
-                          mps_dist_of(sim, M, 0, &dd), err));
+                          fold ? NULL : mps_dist_of(sim, M, 0, &dd), err));
     }
     M->psolve_s += ry_wall_time() - t0;
     M->psolves++;

@@ -237,7 +237,7 @@ ry_status mps_viscous_implicit(ry_sim *sim, mps *M, double dt, int with_st, ry_e
     else
         for (size_t i = 0; i < n; ++i)
             M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
-    RY_TRY(mps_assemble(sim, M, nunk, 1, dt, 1.0, err));
+    RY_TRY(mps_assemble(sim, M, nunk, 1, dt, 1.0, NULL, err));
     const double re = M->re_l, cl = ry_mps_laplacian_coefficient(dim, M->lambda, M->n0l);
     /* the components' right-hand sides and solutions: b and xs from d nunk */
     const double *bs[3];

@@ -20,7 +20,8 @@ ry_status mps_body_is_wall(ry_sim *sim, ry_case *c, size_t k, const char *key, r
     for (size_t i = 0; i < sim->ps.n; ++i)
         if (ry_sim_body_of(sim, sim->ps.id[i]) == (int)k)
             ++*(sim->ps.kind[i] == RY_KIND_WALL ? &walls : &others);
-    RY_CHECK(err, walls > 0 && others == 0, RY_ERR_INPUT,
+    /* (a body wholly beyond a symmetry plane has none left) */
+    RY_CHECK(err, (walls > 0 || ry_box_mirrors(&sim->box) > 1) && others == 0, RY_ERR_INPUT,
              "%s: key '%s': applies to a body of kind wall",
              ry_case_where(c, key, where, sizeof where), key);
     return RY_OK;
