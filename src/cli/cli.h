@@ -78,6 +78,8 @@ int ry_cli_validate_embolization3d_all(const char *root, const char *out, int qu
 int ry_cli_validate_embolization3d_wide(const char *root, const char *out, int quick,
                                         int *failures);
 /* Non-Newtonian channel flows (validate_rheology.c). */
+/* Symmetry planes: cases whole and cut, their series compared (validate_symmetry.c). */
+int ry_cli_validate_symmetry(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_rheology(const char *root, const char *out, int quick, int *failures);
 /* IISPH and two-phase validation (validate_iisph.c). */
 int ry_cli_validate_iisph(const char *root, const char *out, int quick, int *failures);

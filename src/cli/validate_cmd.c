@@ -38,6 +38,7 @@ static const validation validations[] = {
     {"embolization3d", ry_cli_validate_embolization3d},
     {"embolization3d_all", ry_cli_validate_embolization3d_all},
     {"embolization3d_wide", ry_cli_validate_embolization3d_wide},
+    {"symmetry", ry_cli_validate_symmetry},
 };
 enum { NVALIDATIONS = sizeof validations / sizeof validations[0] };
 
