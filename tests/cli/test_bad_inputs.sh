@@ -46,6 +46,7 @@ case_ symmetry_z_in_2d 2 ":5: key 'domain.symmetry[1]': 'z_lo' is beyond the cas
 case_ symmetry_two_on_one_axis 2 ":5: key 'domain.symmetry[1]': 'x_hi' is a second plane across the same axis (one per axis)"
 case_ symmetry_periodic 2 ":5: key 'domain.symmetry[0]': 'x_lo' is a face of a periodic direction"
 case_ symmetry_particle_on_plane 2 ":5: key 'domain.symmetry': particle 4 lies within a quarter spacing of the plane x = 0.044, where its mirror image would coincide with it"
+case_ symmetry_viscous_boomeramg 2 ":6: key 'scheme.viscosity_preconditioner': boomeramg runs without symmetry planes so far (domain.symmetry): jacobi"
 case_ contact_angle_per_liquid_csf 2 ":6: key 'materials[0].contact_angle': a contact angle per liquid needs surface_tension.model potential (CSF takes one angle, surface_tension.contact_angle)"
 case_ contact_angle_fluid_body 2 ":8: key 'bodies[0].contact_angle': applies to a body of kind wall"
 case_ contact_angle_too_many_sets 2 ":13: key 'bodies[8].contact_angle': at most 7 different sets of contact angles on wall bodies"

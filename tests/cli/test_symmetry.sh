@@ -76,6 +76,12 @@ pair mps_dam_deflated mps_dam_break_3d.yaml "$D3 --set scheme.solver.deflation=4
 pair mps_dam_amg mps_dam_break_3d.yaml "$D3 --set scheme.solver.preconditioner=boomeramg" \
     "$HALF" ppe_iterations
 
+# The 2D embolization tank halved through the catheter's axis, its viscosity mixed (implicit
+# for the embolic liquid, explicit for the water: each copy on its original's side of the split)
+pair mps_tank mps_embolization_unified_2d_coarse.yaml \
+    "--set time.end=0.01 --set time.output_interval=0.002 --set scheme.viscosity=mixed" \
+    "--set domain.lo=[0,-1e-3] --set domain.symmetry=[x_lo]" ppe_iterations
+
 # 3. Drops at rest cut by two planes through their centre: a quarter simulated.
 QUARTER="--set domain.lo=[0,0] --set domain.symmetry=[x_lo,y_lo]"
 pair iisph_drop iisph_drop_rest_2d.yaml "--set time.end=0.004 --set time.output_interval=0.001" \

@@ -86,6 +86,12 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     s->pc.partners = MOBILE;
     RY_TRY(ry_case_choice(c, "scheme.viscosity_preconditioner", "jacobi", ry_precond_names,
                           &s->vprecond, err));
+    char vwhere[256];
+    RY_CHECK(err, !(s->vprecond == RY_PRECOND_BOOMERAMG && ry_box_mirrors(&sim->box) > 1),
+             RY_ERR_INPUT,
+             "%s: key 'scheme.viscosity_preconditioner': boomeramg runs without symmetry "
+             "planes so far (domain.symmetry): jacobi",
+             ry_case_where(c, "scheme.viscosity_preconditioner", vwhere, sizeof vwhere));
     long reuse = 1;
     RY_TRY(ry_case_int(c, "scheme.amg_reuse", &reuse, 1, 1000, &s->vamg.reuse, err));
     if (s->implicit) {

@@ -97,6 +97,11 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_case_choice(c, "scheme.solver.viscosity_preconditioner", "jacobi", ry_precond_names,
                           &M->vprecond, err));
     char where[512];
+    RY_CHECK(err, !(M->vprecond == RY_PRECOND_BOOMERAMG && ry_box_mirrors(&sim->box) > 1),
+             RY_ERR_INPUT,
+             "%s: key 'scheme.solver.viscosity_preconditioner': boomeramg runs without "
+             "symmetry planes so far (domain.symmetry): jacobi",
+             ry_case_where(c, "scheme.solver.viscosity_preconditioner", where, sizeof where));
     RY_CHECK(err, !(M->defl > 0 && M->precond == RY_PRECOND_BOOMERAMG), RY_ERR_INPUT,
              "%s: key 'scheme.solver.deflation': goes with the jacobi preconditioner only "
              "(boomeramg already solves the smooth error that deflation removes)",

@@ -222,6 +222,21 @@ static size_t viscous_split(ry_sim *sim, mps *M, double dt, int with_st) {
     return nunk;
 }
 
+/* Symmetry planes: each copy takes its original's side of the split (a threshold its own sums
+ * may cross the other way by rounding) and explicit velocity; the unknowns numbered again. */
+static size_t split_as_originals(ry_sim *sim, mps *M) {
+    const size_t n = sim->ps.n;
+    for (int d = 0; d < sim->dim; ++d) sim->par->sync_field(sim, M->f_vs[d]);
+    size_t nunk = 0;
+    for (size_t i = 0; i < n; ++i) {
+        size_t o;
+        unsigned axes;
+        const int32_t side = sim->par->copy_of(sim, i, &o, &axes) ? M->unk[o] : M->unk[i];
+        M->unk[i] = side >= 0 ? (int32_t)nunk++ : -1; /* (an original precedes its copies) */
+    }
+    return nunk;
+}
+
 /* Implicit viscosity: (1 - dt nu lap) u* = v + dt a, per component, walls as known values.
  * With `viscosity: mixed` only the stiff particles are unknowns (viscous_split); the others'
  * explicit u* enter their rows as known values, as the walls' velocities do. */
@@ -230,11 +245,12 @@ ry_status mps_viscous_implicit(ry_sim *sim, mps *M, double dt, int with_st, ry_e
     const size_t n = ps->n;
     const int dim = sim->dim;
     /* (a distributed run solves them all: a halo copy lacks the neighbours for the split) */
-    const int mixed = M->visc == VISC_MIXED && !sim->par;
+    const int mixed = M->visc == VISC_MIXED && !ry_sim_distributed(sim);
     size_t nunk = 0;
-    if (mixed)
+    if (mixed) {
         nunk = viscous_split(sim, M, dt, with_st);
-    else
+        if (sim->par) nunk = split_as_originals(sim, M);
+    } else
         for (size_t i = 0; i < n; ++i)
             M->unk[i] = ps->kind[i] == RY_KIND_FLUID ? (int32_t)nunk++ : -1;
     RY_TRY(mps_assemble(sim, M, nunk, 1, dt, 1.0, NULL, err));
