@@ -1,7 +1,8 @@
 /* The library's public interface (include/ryushi/ryushi.h): a run taken step by step is the run
  * taken whole, bitwise; advancing lands on the time asked for; fields, names, units, probes and
  * statistics; errors come back as the exit-code class with the message; outputs, checkpoints
- * and a restart through the handle. The seed's dam break at 20 x 40 particles. */
+ * and a restart through the handle; with a symmetry plane, the fields of the part simulated and
+ * the probes of the whole. The seed's dam break at 20 x 40 particles. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <setjmp.h>
@@ -138,6 +139,38 @@ static void test_fields_and_probes(void **state) {
     ry_sim_destroy(sim);
 }
 
+/* With a symmetry plane through the column's middle: the count and the fields are the
+ * simulated half's, the probes the whole problem's (the column's whole mass), also after
+ * steps (when the mirror copies exist). */
+static void test_symmetry_planes(void **state) {
+    (void)state;
+    char dir[256];
+    snprintf(dir, sizeof dir, "%s/sym", tmp);
+    const char *sets[] = {"spacing=0.0125", "output.vtk=false", "time.end=0.05",
+                          "domain.lo=[0.125,-0.1]", "domain.symmetry=[x_lo]"};
+    ry_sim *sim = NULL;
+    assert_int_equal(ry_sim_load(&sim, dam, 5, sets, dir), 0);
+    for (int k = 0; k < 2; ++k) {
+        const int64_t *kind;
+        size_t nk, fluid = 0;
+        assert_int_equal(ry_sim_int_field(sim, "kind", &kind, &nk), 0);
+        assert_int_equal(nk, ry_sim_count(sim));
+        for (size_t i = 0; i < nk; ++i) fluid += kind[i] == 0;
+        assert_int_equal(fluid, 400); /* 10 x 40 */
+        const double *x;
+        size_t nx;
+        assert_int_equal(ry_sim_field(sim, "x", &x, &nx), 0);
+        assert_int_equal(nx, nk);
+        for (size_t i = 0; i < nx; ++i) assert_true(x[i] > 0.125);
+        double mass;
+        assert_int_equal(ry_sim_probe(sim, "mass", &mass), 0);
+        assert_true(fabs(mass - 125.0) < 1e-9); /* the whole column: 1000 x 0.25 x 0.5 */
+        double dt;
+        for (int s = 0; k == 0 && s < 5; ++s) assert_int_equal(ry_sim_step(sim, &dt), 0);
+    }
+    ry_sim_destroy(sim);
+}
+
 /* A missing file is an i/o error naming it; a bad key an input error naming it. */
 static void test_errors(void **state) {
     (void)state;
@@ -185,7 +218,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_steps_are_the_run),         cmocka_unit_test(test_advance_and_end),
         cmocka_unit_test(test_fields_and_probes),         cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_output_checkpoint_restart),
+        cmocka_unit_test(test_output_checkpoint_restart), cmocka_unit_test(test_symmetry_planes),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
