@@ -1,15 +1,16 @@
 #!/bin/sh
-# Symmetry planes (domain.symmetry, docs/reference/symmetry.md): half or a quarter of a
-# symmetric problem, run with its planes, gives the full run's series.csv (the whole problem's
-# measurements) within a relative 1e-6 in every column (validation/symmetry.yaml; the sums are
-# taken in another order and the full run is mirror-symmetric only up to rounding; counts
-# exactly): a hydrostatic column (IISPH, and MPS with implicit viscosity, its pressure profile
-# on the plane too), the 3D dam break cut along its width (WCSPH, and MPS with its pressure
-# solved by Jacobi, deflated and by BoomerAMG), drops cut by two planes (IISPH with CSF, MPS
-# with the potential model), the 3D cantilever (solid) and the open-boundary channel cut along
-# its axis. The VTK output holds the simulated part; a run stopped at a checkpoint and
-# continued ends bitwise identical to an uninterrupted one; an unstable run keeps its last good
-# state.
+# Symmetry planes (domain.symmetry, docs/reference/symmetry.md): half, a quarter or an eighth
+# of a symmetric problem, run with its planes, gives the full run's series.csv (the whole
+# problem's measurements) within a relative 1e-6 in every column (validation/symmetry.yaml;
+# the sums are taken in another order and the full run is mirror-symmetric only up to
+# rounding; counts exactly): a hydrostatic column (IISPH, and MPS with implicit viscosity, its
+# pressure profile on the plane too), the 3D dam break cut along its width (WCSPH, and MPS
+# with its pressure solved by Jacobi, deflated and by BoomerAMG), the 2D embolization tank
+# with mixed viscosity, drops cut by two planes (IISPH with CSF, MPS with the potential model)
+# and a 3D drop by three (IISPH), the 3D cantilever (solid) and the open-boundary channel cut
+# along its axis. The VTK output holds the simulated part; a run stopped at a checkpoint and
+# continued ends bitwise identical to an uninterrupted one; an unstable run keeps its last
+# good state.
 # usage: test_symmetry.sh RYUSHI SOURCE_DIR
 set -u
 RY=$1
@@ -86,6 +87,10 @@ pair mps_tank mps_embolization_unified_2d_coarse.yaml \
 QUARTER="--set domain.lo=[0,0] --set domain.symmetry=[x_lo,y_lo]"
 pair iisph_drop iisph_drop_rest_2d.yaml "--set time.end=0.004 --set time.output_interval=0.001" \
     "$QUARTER"
+# and a 3D one by three: an eighth
+pair iisph_drop_3d iisph_drop_rest_3d.yaml \
+    "--set time.end=0.001 --set time.output_interval=0.00025 --set output.vtk=false" \
+    "--set domain.lo=[0,0,0] --set domain.symmetry=[x_lo,y_lo,z_lo]"
 pair mps_drop mps_drop_rest_2d.yaml "--set time.end=0.002 --set time.output_interval=0.00025" \
     "$QUARTER"
 
