@@ -6,6 +6,7 @@
 
 #include "ryushi/csv.h"
 #include "ryushi/plot.h"
+#include "ryushi/run.h"
 #include "ryushi/sim.h"
 
 int ry_cli_bench(int argc, char **argv);
@@ -18,6 +19,12 @@ struct ry_manifest;
 int ry_cli_validate_report(struct ry_manifest *all, int n, const char *out, const char *into);
 /* out/results_NAME.csv: the checks of the last run of validation name. */
 void ry_cli_results_path(char *buf, size_t size, const char *out, const char *name);
+/* Runs root/case_file with overrides into out/sub and reads its series.csv into *series;
+ * keeps the final state in *sim (the caller frees it; freed here when the series cannot be
+ * read) and the run's statistics in *stats (validate_common.c). */
+ry_status ry_cli_run_series(const char *root, const char *out, const char *case_file,
+                            const char *sub, int nset, const char *const *sets, ry_sim *sim,
+                            ry_run_stats *stats, ry_table *series, ry_error *err);
 /* Adds column cy against column cx of a table, each scaled, as a series of a plot panel
  * (validate_cmd.c); an error names a missing column. */
 ry_status ry_cli_add_series(ry_plot *p, int panel, const char *label, const ry_table *t,

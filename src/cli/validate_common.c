@@ -107,6 +107,19 @@ void ry_cli_write_plot(ry_plot *p, const char *out, const char *name, int *failu
     }
 }
 
+ry_status ry_cli_run_series(const char *root, const char *out, const char *case_file,
+                            const char *sub, int nset, const char *const *sets, ry_sim *sim,
+                            ry_run_stats *stats, ry_table *series, ry_error *err) {
+    char cpath[4096], odir[4096], spath[4200];
+    snprintf(cpath, sizeof cpath, "%s/%s", root, case_file);
+    snprintf(odir, sizeof odir, "%s/%s", out, sub);
+    RY_TRY(ry_run_case_file(cpath, nset, sets, odir, sim, stats, err));
+    snprintf(spath, sizeof spath, "%s/series.csv", odir);
+    const ry_status st = ry_table_read(series, spath, err);
+    if (st != RY_OK) ry_sim_free(sim);
+    return st;
+}
+
 int ry_cli_tolerances(const char *root, const char *name, int n, const char *const *keys,
                       double *values, int *failures) {
     ry_manifest m;

@@ -27,14 +27,7 @@ typedef struct irun {
 /* Runs root/case_file with overrides into out/sub; keeps the final state and the series. */
 static ry_status run_case(const char *root, const char *out, const char *case_file, const char *sub,
                           int nset, const char *const *sets, irun *r, ry_error *err) {
-    char cpath[4096], odir[4096], spath[4200];
-    snprintf(cpath, sizeof cpath, "%s/%s", root, case_file);
-    snprintf(odir, sizeof odir, "%s/%s", out, sub);
-    RY_TRY(ry_run_case_file(cpath, nset, sets, odir, &r->sim, &r->stats, err));
-    snprintf(spath, sizeof spath, "%s/series.csv", odir);
-    ry_status st = ry_table_read(&r->s, spath, err);
-    if (st != RY_OK) ry_sim_free(&r->sim);
-    return st;
+    return ry_cli_run_series(root, out, case_file, sub, nset, sets, &r->sim, &r->stats, &r->s, err);
 }
 
 static void irun_free(irun *r) {

@@ -45,14 +45,7 @@ static const char *const tol_keys[NTOL] = {
 static ry_status run_mps(const char *root, const char *out, const char *case_rel, const char *sub,
                          int nset, const char *const *sets, ry_table *series, ry_sim *sim,
                          ry_run_stats *stats, ry_error *err) {
-    char cpath[4096], odir[4096], spath[4200];
-    snprintf(cpath, sizeof cpath, "%s/%s", root, case_rel);
-    snprintf(odir, sizeof odir, "%s/%s", out, sub);
-    RY_TRY(ry_run_case_file(cpath, nset, sets, odir, sim, stats, err));
-    snprintf(spath, sizeof spath, "%s/series.csv", odir);
-    ry_status st = ry_table_read(series, spath, err);
-    if (st != RY_OK) ry_sim_free(sim);
-    return st;
+    return ry_cli_run_series(root, out, case_rel, sub, nset, sets, sim, stats, series, err);
 }
 
 /* Hydrostatic column: the time-mean pressure along the middle (the case's profile `column`,

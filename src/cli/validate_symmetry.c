@@ -7,7 +7,6 @@
 #include "cli/cli.h"
 #include "ryushi/csv.h"
 #include "ryushi/plot.h"
-#include "ryushi/run.h"
 #include "sim/symmetry.h"
 
 /* A case run whole and cut: its overrides (both), the cut's, and the label; and whole with
@@ -21,26 +20,23 @@ typedef struct sym_pair {
 } sym_pair;
 
 /* Runs a case with overrides into out/sub; its series, simulated particles and seconds. */
-/* cut: 0 whole, 1 cut, 2 whole perturbed. */
+/* Runs a pair's case whole (cut 0), cut (1) or whole perturbed (2) into out/sub; its series,
+ * particles simulated (without the mirror copies) and seconds. */
 static ry_status run_one(const char *root, const char *out, const sym_pair *c, int cut,
                          const char *sub, ry_table *series, size_t *particles, double *wall_s,
                          ry_error *err) {
-    char cpath[4096], odir[4096], spath[4200];
     const char *sets[7];
     int n = 0;
     for (int k = 0; k < 4 && c->sets[k]; ++k) sets[n++] = c->sets[k];
     for (int k = 0; cut == 1 && k < 2; ++k) sets[n++] = c->cut[k];
     if (cut == 2) sets[n++] = c->perturb;
-    snprintf(cpath, sizeof cpath, "%s/%s", root, c->case_file);
-    snprintf(odir, sizeof odir, "%s/%s", out, sub);
     ry_sim sim;
     ry_run_stats stats;
-    RY_TRY(ry_run_case_file(cpath, n, sets, odir, &sim, &stats, err));
-    *particles = ry_symmetry_owned(&sim); /* (without the mirror copies) */
+    RY_TRY(ry_cli_run_series(root, out, c->case_file, sub, n, sets, &sim, &stats, series, err));
+    *particles = ry_symmetry_owned(&sim);
     *wall_s = stats.wall_s;
     ry_sim_free(&sim);
-    snprintf(spath, sizeof spath, "%s/series.csv", odir);
-    return ry_table_read(series, spath, err);
+    return RY_OK;
 }
 
 /* Whether a column is compared: not the time, the step's count and length, which follow the

@@ -40,20 +40,17 @@ static void at_most(vctx *v, const char *what, double figure, double tol) {
 static ry_status run_series(vctx *v, const char *case_file, const char *sub, int nset,
                             const char *const *sets, ry_table *series, size_t *particles,
                             double *wall_s, ry_sim *keep, ry_error *err) {
-    char cpath[4096], odir[4096], spath[4200];
-    path_join(cpath, sizeof cpath, v->root, case_file);
-    path_join(odir, sizeof odir, v->out, sub);
     ry_sim sim;
     ry_run_stats stats;
-    RY_TRY(ry_run_case_file(cpath, nset, sets, odir, &sim, &stats, err));
+    RY_TRY(
+        ry_cli_run_series(v->root, v->out, case_file, sub, nset, sets, &sim, &stats, series, err));
     *particles = sim.ps.n;
     *wall_s = stats.wall_s;
     if (keep)
         *keep = sim;
     else
         ry_sim_free(&sim);
-    path_join(spath, sizeof spath, odir, "series.csv");
-    return ry_table_read(series, spath, err);
+    return RY_OK;
 }
 
 /* The tolerances of validation/dam_break.yaml (tests/physics/test_wcsph.c reads the same). */

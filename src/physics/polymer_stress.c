@@ -22,11 +22,11 @@ ry_status ry_sph_rheo_init(ry_sph_rheo *r, ry_sim *sim, ry_error *err) {
     RY_TRY(ry_particles_add_field(ps, "viscosity", "m^2/s", -1, RY_FIELD_STATE | RY_FIELD_OUTPUT,
                                   &r->f_nu, err));
     RY_TRY(ry_particles_add_field(ps, "shear_rate", "1/s", -1, RY_FIELD_OUTPUT, &r->f_gd, err));
-    for (int k = 0; r->ob && k < ry_tau_count(sim->dim); ++k)
+    for (int k = 0; r->ob && k < ry_tau_count(sim->dim); ++k) {
         RY_TRY(ry_particles_add_field(ps, ry_tau_name(sim->dim, k), "Pa", -1,
                                       RY_FIELD_STATE | RY_FIELD_OUTPUT, &r->f_tau[k], err));
-    for (int k = 0; r->ob && k < ry_tau_count(sim->dim); ++k)
         ry_particles_set_parity(ps, r->f_tau[k], ry_tau_odd(sim->dim, k));
+    }
     /* Before the first rates: the viscosity at rest (the time step reads it). */
     for (size_t i = 0; i < ps->n; ++i) {
         const ry_material *mat = &sim->mat[ps->material[i]];

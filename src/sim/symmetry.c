@@ -10,7 +10,7 @@
 #include "ryushi/run.h"
 #include "sim/writer.h"
 
-#define MAX_PLANES 6
+#define MAX_PLANES 3 /* one per axis */
 #define NSETS (1u << MAX_PLANES)
 
 typedef struct mirror {
@@ -18,8 +18,7 @@ typedef struct mirror {
     int axis[MAX_PLANES];   /* the plane's normal axis */
     int hi[MAX_PLANES];     /* the face at the box's hi (else lo) */
     double pos[MAX_PLANES]; /* its coordinate */
-    /* per set s of planes (bit q: plane q), at most one per axis: */
-    uint8_t valid[NSETS];
+    /* per set s of planes (bit q: plane q; every s from 1 to 2^np - 1): */
     unsigned axes[NSETS];    /* the axes it mirrors */
     double at[NSETS][3];     /* the plane's coordinate on each of those axes */
     size_t nown;             /* particles [0, nown) are the set's own, [nown, n) copies */
@@ -95,6 +94,7 @@ static void reflect(ry_sim *sim, const mirror *M, size_t i, int q, int keep_ref)
 static void reflect_crossers(ry_sim *sim, const mirror *M, int keep_ref) {
     for (int q = 0; q < M->np; ++q) {
         const double *x = sim->ps.f[RY_F_X + M->axis[q]], p = M->pos[q];
+#pragma omp parallel for schedule(static) if (M->nown > 4096)
         for (size_t i = 0; i < M->nown; ++i)
             if (M->hi[q] ? x[i] > p : x[i] < p) reflect(sim, M, i, q, keep_ref);
     }
@@ -129,7 +129,7 @@ static ry_status make_copies(ry_sim *sim, mirror *M, double reach, const double 
     size_t count = 0;
     for (size_t i = 0; i < M->nown; ++i) {
         const unsigned m = near_planes(M, x, i, w);
-        for (unsigned s = m; s; s = (s - 1) & m) count += M->valid[s];
+        for (unsigned s = m; s; s = (s - 1) & m) ++count;
     }
     if (count == 0) return RY_OK;
     RY_CHECK(err,
@@ -138,11 +138,10 @@ static ry_status make_copies(ry_sim *sim, mirror *M, double reach, const double 
              RY_ERR_NOMEM, "out of memory (symmetry planes' copies)");
     for (size_t i = 0; i < M->nown; ++i) {
         const unsigned m = near_planes(M, x, i, w);
-        for (unsigned s = m; s; s = (s - 1) & m)
-            if (M->valid[s]) {
-                M->src[M->ncopy] = i;
-                M->set[M->ncopy++] = (uint8_t)s;
-            }
+        for (unsigned s = m; s; s = (s - 1) & m) {
+            M->src[M->ncopy] = i;
+            M->set[M->ncopy++] = (uint8_t)s;
+        }
     }
     const int64_t next = ps->next_id;
     size_t first;
@@ -286,7 +285,6 @@ static ry_status sym_open_update(ry_sim *sim, ry_error *err) {
     sim->par = NULL;
     const ry_status st = ry_open_update(sim, err);
     sim->par = par;
-    M->nown = sim->ps.n;
     return st;
 }
 
@@ -322,8 +320,7 @@ ry_status ry_symmetry_measure(ry_sim *sim, ry_measure_fn fn, void *ctx, ry_error
     const mirror *M = get(sim);
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n, own = ry_symmetry_owned(sim), nc = n - own;
-    int nsets = 0;
-    for (unsigned s = 1; s < NSETS; ++s) nsets += M->valid[s];
+    const unsigned nsets = (1u << M->np) - 1;
     /* the copies aside (a scheme's values of them, which the images would overwrite) */
     double *keep = malloc((nc * (size_t)ps->nfields + 1) * sizeof *keep);
     int64_t *kid = malloc((nc + 1) * sizeof *kid);
@@ -341,8 +338,7 @@ ry_status ry_symmetry_measure(ry_sim *sim, ry_measure_fn fn, void *ctx, ry_error
     ry_status st = ry_particles_add(ps, own * (size_t)nsets, &first, err);
     ps->next_id = next;
     size_t at = own;
-    for (unsigned s = 1; st == RY_OK && s < NSETS; ++s) {
-        if (!M->valid[s]) continue;
+    for (unsigned s = 1; st == RY_OK && s <= nsets; ++s) {
         for (size_t i = 0; i < own; ++i, ++at) {
             ps->id[at] = ps->id[i];
             ps->kind[at] = ps->kind[i];
@@ -510,18 +506,12 @@ ry_status ry_symmetry_attach(ry_sim *sim, ry_error *err) {
                 M->hi[M->np] = side;
                 M->pos[M->np++] = side ? b->hi[d] : b->lo[d];
             }
-    for (unsigned s = 1; s < NSETS; ++s) {
-        unsigned axes = 0;
-        int ok = 1;
+    for (unsigned s = 1; s < (1u << M->np); ++s)
         for (int q = 0; q < M->np; ++q)
             if (s >> q & 1u) {
-                ok &= !(axes >> M->axis[q] & 1u); /* (one plane per axis: always) */
-                axes |= 1u << M->axis[q];
+                M->axes[s] |= 1u << M->axis[q];
                 M->at[s][M->axis[q]] = M->pos[q];
             }
-        M->valid[s] = (uint8_t)(ok && !(s >> M->np));
-        M->axes[s] = axes;
-    }
     M->nown = sim->ps.n;
     sim->par = &ops;
     sim->par_state = M;

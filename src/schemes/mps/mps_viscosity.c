@@ -33,11 +33,11 @@ ry_status mps_rheology_init(ry_sim *sim, mps *M, ry_error *err) {
     ry_particles *ps = &sim->ps;
     RY_TRY(ry_particles_add_field(ps, "viscosity", "m^2/s", -1, RY_FIELD_OUTPUT, &M->f_nu, err));
     RY_TRY(ry_particles_add_field(ps, "shear_rate", "1/s", -1, RY_FIELD_OUTPUT, &M->f_gd, err));
-    for (int k = 0; M->rheo_ob && k < ry_tau_count(sim->dim); ++k)
+    for (int k = 0; M->rheo_ob && k < ry_tau_count(sim->dim); ++k) {
         RY_TRY(ry_particles_add_field(ps, ry_tau_name(sim->dim, k), "Pa", -1,
                                       RY_FIELD_STATE | RY_FIELD_OUTPUT, &M->f_tau[k], err));
-    for (int k = 0; M->rheo_ob && k < ry_tau_count(sim->dim); ++k)
         ry_particles_set_parity(ps, M->f_tau[k], ry_tau_odd(sim->dim, k));
+    }
     return RY_OK;
 }
 

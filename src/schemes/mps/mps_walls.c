@@ -13,16 +13,14 @@
 #include "boundary/walls_adami2012.h"
 #include "schemes/mps/mps_internal.h"
 
-/* Checks that bodies[k], named in key, is a body of wall particles. */
+/* Checks that bodies[k], named in key, has no particle of another kind than wall (a body may
+ * be left with none, e.g. wholly beyond a symmetry plane). */
 ry_status mps_body_is_wall(ry_sim *sim, ry_case *c, size_t k, const char *key, ry_error *err) {
     char where[256];
-    size_t walls = 0, others = 0;
+    size_t others = 0;
     for (size_t i = 0; i < sim->ps.n; ++i)
-        if (ry_sim_body_of(sim, sim->ps.id[i]) == (int)k)
-            ++*(sim->ps.kind[i] == RY_KIND_WALL ? &walls : &others);
-    /* (a body wholly beyond a symmetry plane has none left) */
-    RY_CHECK(err, (walls > 0 || ry_box_mirrors(&sim->box) > 1) && others == 0, RY_ERR_INPUT,
-             "%s: key '%s': applies to a body of kind wall",
+        others += ry_sim_body_of(sim, sim->ps.id[i]) == (int)k && sim->ps.kind[i] != RY_KIND_WALL;
+    RY_CHECK(err, others == 0, RY_ERR_INPUT, "%s: key '%s': applies to a body of kind wall",
              ry_case_where(c, key, where, sizeof where), key);
     return RY_OK;
 }
