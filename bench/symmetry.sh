@@ -13,8 +13,9 @@
 #            5 and 25 steps
 #   tank     cases/mps_embolization_unified_3d.yaml (0.1 mm, 576,180 particles), a quarter (two
 #            planes through the catheter's axis, MPS), 2 and 6 steps
-# Each case prints a line per repetition (whole and part: particles simulated, seconds per step)
-# and a line of medians with the speed-up.
+# Each case prints a line per repetition (whole and part: particles simulated, seconds per step,
+# peak resident memory in MB of the longer run, set-up and output included) and a line of
+# medians with the speed-up.
 # Exit status: 0 on success, 1 with a message on stderr when a run fails.
 set -eu
 
@@ -34,7 +35,7 @@ field() { # field NAME LINE: the value of NAME= in a summary line
     printf '%s\n' "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"
 }
 
-run() { # run CASE STEPS ARGS...: prints "particles wall_s"
+run() { # run CASE STEPS ARGS...: prints "particles wall_s peak_rss_mb"
     c=$1 steps=$2
     shift 2
     "$RY" run "$ROOT/$c" -o "$OUT/run" --threads "$THREADS" --set time.max_steps="$steps" \
@@ -43,15 +44,15 @@ run() { # run CASE STEPS ARGS...: prints "particles wall_s"
         exit 1
     }
     s=$(grep '^summary' "$OUT/run.log")
-    echo "$(field particles "$s") $(field wall_s "$s")"
+    echo "$(field particles "$s") $(field wall_s "$s") $(field peak_rss_mb "$s")"
 }
 
-per_step() { # per_step CASE N1 N2 ARGS...: prints "particles seconds_per_step"
+per_step() { # per_step CASE N1 N2 ARGS...: prints "particles seconds_per_step peak_MB"
     c=$1 n1=$2 n2=$3
     shift 3
     a=$(run "$c" "$n1" "$@")
     b=$(run "$c" "$n2" "$@")
-    echo "$a $b" | awk -v n1="$n1" -v n2="$n2" '{ printf "%d %.4f\n", $3, ($4 - $2) / (n2 - n1) }'
+    echo "$a $b" | awk -v n1="$n1" -v n2="$n2" '{ printf "%d %.4f %.0f\n", $4, ($5 - $2) / (n2 - n1), $6 }'
 }
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
