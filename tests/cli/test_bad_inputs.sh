@@ -64,6 +64,7 @@ case_ mps_surface_pressure_unknown 2 ":7: key 'scheme.surface_pressure': expecte
 case_ mps_deflation_negative 2 ":7: key 'scheme.solver.deflation': expected an integer in [0, 1000], got '-2'"
 case_ mps_thin_wall_layers 2 ":5: key 'scheme.thin_wall_layers': expected an integer in [1, 3], got '4'"
 case_ mps_thin_wall_pressure_unknown 2 ":7: key 'scheme.thin_wall_pressure': expected one of unknown, neumann; got 'dirichlet'"
+case_ mps_wall_pressure_without_extrapolation 2 ":8: key 'scheme.wall_extrapolation': false leaves the walls without a pressure with scheme.wall_pressure: neumann (their pressure is the extrapolated one)"
 case_ mps_contact_line_slip_not_bool 2 ":7: key 'scheme.contact_line_slip': expected true or false, got 'sometimes'"
 case_ inlet_flow_rate_and_velocity 2 ":8: key 'open_boundaries[0].flow_rate': an open boundary takes 'velocity' or 'flow_rate' with 'direction', not both"
 case_ outlet_pressure_and_flow_rate 2 ":8: key 'open_boundaries[0].pressure': an outlet takes 'pressure', or 'flow_rate' or 'velocity' (a rate outlet), not both"

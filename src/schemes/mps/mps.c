@@ -43,6 +43,7 @@ static const char *const visc_names[] = {"explicit", "implicit", "none", "mixed"
 static const char *const grad_names[] = {"corrected", "standard", NULL};
 static const char *const surface_pressure_names[] = {"zero", "hydrostatic", NULL};
 static const char *const thin_pressure_names[] = {"unknown", "neumann", NULL};
+static const char *const wall_pressure_names[] = {"unknown", "neumann", NULL};
 static const char *const wall_velocity_names[] = {"own", "mirrored", "slip", NULL};
 
 static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) {
@@ -80,6 +81,13 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
     RY_TRY(ry_case_bool(c, "scheme.wall_extrapolation", &yes, &M->wall_extrapolate, err));
     RY_TRY(ry_case_choice(c, "scheme.thin_wall_pressure", "neumann", thin_pressure_names,
                           &M->thin_neumann, err));
+    RY_TRY(ry_case_choice(c, "scheme.wall_pressure", "unknown", wall_pressure_names,
+                          &M->wall_neumann, err));
+    char where[512];
+    RY_CHECK(err, !(M->wall_neumann && !M->wall_extrapolate), RY_ERR_INPUT,
+             "%s: key 'scheme.wall_extrapolation': false leaves the walls without a pressure "
+             "with scheme.wall_pressure: neumann (their pressure is the extrapolated one)",
+             ry_case_where(c, "scheme.wall_extrapolation", where, sizeof where));
     RY_TRY(ry_case_bool(c, "scheme.inlet_free_surface", &no, &M->inlet_surface, err));
     RY_TRY(ry_case_bool(c, "scheme.contact_line_slip", &no, &M->cl_slip, err));
     RY_TRY(ry_case_bool(c, "scheme.thin_wall_cut", &yes, &M->thin_cut_on, err));
@@ -96,7 +104,6 @@ static ry_status mps_init(ry_sim *sim, ry_case *c, void **state, ry_error *err) 
                           &M->precond, err));
     RY_TRY(ry_case_choice(c, "scheme.solver.viscosity_preconditioner", "jacobi", ry_precond_names,
                           &M->vprecond, err));
-    char where[512];
     RY_CHECK(err, !(M->vprecond == RY_PRECOND_BOOMERAMG && ry_box_mirrors(&sim->box) > 1),
              RY_ERR_INPUT,
              "%s: key 'scheme.solver.viscosity_preconditioner': boomeramg runs without "
@@ -389,13 +396,19 @@ static int mps_vars(void *state, ry_state_var *v, int max) {
 }
 
 /* The summary: the linear solves of this process, iterations per solve and seconds in them per
- * step (the implicit viscosity's iterations summed over the components). */
+ * step (the implicit viscosity's iterations summed over the components); the pressure
+ * equation's unknowns (mean per solve), how many of them are walls, and the seconds per solve of
+ * its assembly and of the walls' extrapolated pressure. */
 static void mps_report(void *state, char *buf, size_t size) {
     const mps *M = state;
     const double ps = M->psolves ? (double)M->psolves : 1.0;
     const int k =
-        snprintf(buf, size, "pressure_preconditioner=%s ppe_iterations_mean=%.3g ppe_solve_s=%.3g",
-                 ry_precond_names[M->precond], (double)M->total_piters / ps, M->psolve_s / ps);
+        snprintf(buf, size,
+                 "pressure_preconditioner=%s ppe_iterations_mean=%.3g ppe_solve_s=%.3g "
+                 "ppe_unknowns_mean=%.0f ppe_wall_unknowns_mean=%.0f ppe_assembly_s=%.3g "
+                 "wall_extrapolation_s=%.3g",
+                 ry_precond_names[M->precond], (double)M->total_piters / ps, M->psolve_s / ps,
+                 M->total_unk / ps, M->total_wunk / ps, M->passemble_s / ps, M->pwall_s / ps);
     int k2 = k;
     if (M->precond == RY_PRECOND_BOOMERAMG && k > 0 && (size_t)k < size)
         k2 += snprintf(buf + k, size - (size_t)k, " ppe_amg_setup_s=%.3g", M->amg.setup_s / ps);

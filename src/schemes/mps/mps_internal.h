@@ -38,6 +38,7 @@ typedef struct mps {
     int pmin_on;           /* gradient with the neighbourhood's least pressure (eq. 5) */
     int wall_extrapolate;  /* wall pressure for the gradient extrapolated from the fluid */
     int thin_neumann;      /* thin walls stay out of the pressure equation (Neumann) */
+    int wall_neumann;      /* every wall stays out of it (Neumann with the hydrostatic head) */
     int inlet_surface;     /* inflow buffers may be free surface (else a closed piston) */
     int cl_slip;           /* walls give no shear stress at a contact line of two liquids */
     double coll_r, coll_e; /* artificial repulsion: distance, restitution */
@@ -111,6 +112,10 @@ typedef struct mps {
      * the viscosity, and the seconds in their solvers (assembly excluded) */
     long total_piters, psolves, total_viters, vsolves;
     double psolve_s, vsolve_s;
+    /* and of the pressure equation: its unknowns and those of them that are walls (summed over
+     * the solves), the seconds of its assembly (matrix and right-hand side) and of the walls'
+     * extrapolated pressure */
+    double total_unk, total_wunk, passemble_s, pwall_s;
 } mps;
 
 /* Kinematic viscosity of a pair (harmonic mean: symmetric, and 0 next to an inviscid fluid).
@@ -153,6 +158,12 @@ static inline double wall_beta(const ry_sim *sim, const mps *M, size_t i, size_t
  * fluid on either side, and its pressure for the gradient is extrapolated from each side. */
 static inline int thin_out(const mps *M, size_t i) {
     return M->thin_neumann && M->thin && M->thin[i] >= 0;
+}
+
+/* Whether particle i stays out of the pressure equation as a wall: a thin one (thin_out), or with
+ * `scheme.wall_pressure: neumann` any wall particle. */
+static inline int wall_out(const ry_sim *sim, const mps *M, size_t i) {
+    return thin_out(M, i) || (M->wall_neumann && sim->ps.kind[i] == RY_KIND_WALL);
 }
 
 /* The unit normal of thin wall particle i, or NULL (not thin, or no sheet there). */

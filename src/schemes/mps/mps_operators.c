@@ -274,7 +274,8 @@ void mps_number_density(ry_sim *sim, mps *M) {
                 M->role[i] = nd[i] < M->beta ? ROLE_SURFACE : ROLE_FLUID;
             } else {
                 const int thin = M->thin && M->thin[i] >= 0;
-                const int closed = thin || (!M->inlet_surface && ps->kind[i] == RY_KIND_INLET);
+                const int closed = thin || (!M->inlet_surface && ps->kind[i] == RY_KIND_INLET) ||
+                                   (M->wall_neumann && ps->kind[i] == RY_KIND_WALL);
                 M->role[i] = !fluid_near                  ? ROLE_DUMMY
                              : nd[i] < M->beta && !closed ? ROLE_SURFACE
                                                           : ROLE_WALL;
@@ -282,7 +283,8 @@ void mps_number_density(ry_sim *sim, mps *M) {
             surf[i] = M->role[i] == ROLE_SURFACE && ps->kind[i] == RY_KIND_FLUID;
             /* the source's divergence of u* for the unknowns, while the row's pairs are at
              * hand */
-            if (div && (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL))
+            if (div &&
+                (M->role[i] == ROLE_FLUID || (M->role[i] == ROLE_WALL && !wall_out(sim, M, i))))
                 M->divu[i] = buf ? divergence_lanes(sim, M, i, (const double *const *)u, buf,
                                                     buf + rowmax + 1)
                                  : divergence(sim, M, i);

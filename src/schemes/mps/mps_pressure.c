@@ -34,15 +34,36 @@ ry_amg_slots mps_slots(const ry_sim *sim, mps *M) {
     return (ry_amg_slots){ps->n, M->uslot, ps->id};
 }
 
-/* Pressure: pairs between unknowns and free-surface particles (Dirichlet); dummies and thin
- * walls (thin_out) are left out. */
+/* Pressure: pairs between unknowns and free-surface particles (Dirichlet); dummies and the
+ * walls out of the equation (wall_out: thin ones, or all with the Neumann walls) are left out. */
 static int couple_pressure(const ry_sim *sim, const mps *M, size_t i, size_t j, double *coef,
                            double dt) {
-    (void)sim;
     (void)i;
     (void)dt;
     *coef = 1.0;
-    return M->role[j] != ROLE_DUMMY && !thin_out(M, j);
+    return M->role[j] != ROLE_DUMMY && !wall_out(sim, M, j);
+}
+
+/* With `scheme.wall_pressure: neumann` a wall particle j within re_l of unknown i stands in the
+ * Laplacian for the pressure p_j = p_i + rho_i g.(x_j - x_i), the hydrostatic extension of i's
+ * own (the Neumann condition dp/dn = rho g.n at the wall): the pair's term c w (p_i - p_j) is
+ * known, -c w rho_i g.(x_j - x_i), and goes to the right-hand side. Every wall particle in reach
+ * counts (dummies too), so that the Laplacian of a hydrostatic field is that of a full support.
+ * Thin walls keep their pairs out (zero gradient, scheme.thin_wall_pressure). */
+static double wall_head_source(const ry_sim *sim, const mps *M, size_t i, double cl) {
+    const ry_particles *ps = &sim->ps;
+    const double rho = sim->mat[ps->material[i]].density;
+    double b = 0;
+    for (size_t q = sim->nl.offset[i]; q < M->lend[i]; ++q) {
+        const uint32_t j = M->pj[q];
+        if (ps->kind[j] != RY_KIND_WALL || thin_out(M, j)) continue;
+        double dx[3];
+        ry_sim_separation(sim, i, j, dx); /* x_j - x_i */
+        double gd = 0;
+        for (int a = 0; a < sim->dim; ++a) gd += sim->gravity[a] * dx[a];
+        b += cl * ry_mps_weight_tamai(M->pr[q], M->re_l) * rho * gd;
+    }
+    return b;
 }
 
 /* Viscosity: every pair; walls are known velocities. */
@@ -246,19 +267,24 @@ static ry_status aggregates(const ry_sim *sim, mps *M, size_t nunk, ry_error *er
     }
 }
 
-/* Pressure Poisson equation at x*: unknowns are the inner fluid and the wall particles. */
+/* Pressure Poisson equation at x*: unknowns are the inner fluid and the wall particles (not the
+ * walls out of it, wall_out). */
 ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     /* Symmetry planes: the unknowns are the set's own, a copy's column its original's (the
      * pressure is even across a mirror), and the system is solved in one piece. */
     const int fold = sim->par && !ry_sim_distributed(sim);
-    size_t nunk = 0;
+    const double ta = ry_wall_time();
+    size_t nunk = 0, nwall = 0;
     for (size_t i = 0; i < n; ++i)
-        M->unk[i] = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) && !thin_out(M, i) &&
+        M->unk[i] = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) && !wall_out(sim, M, i) &&
                             !(fold && ry_sim_is_halo(sim, i))
                         ? (int32_t)nunk++
                         : -1;
+    for (size_t i = 0; i < n; ++i) nwall += M->unk[i] >= 0 && ps->kind[i] != RY_KIND_FLUID;
+    M->total_unk += (double)nunk;
+    M->total_wunk += (double)nwall;
     for (size_t i = 0; fold && i < n; ++i) {
         size_t o;
         unsigned axes;
@@ -307,6 +333,7 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
         for (size_t q = sim->nl.offset[i]; dirichlet && near[i] && q < M->lend[i]; ++q)
             if (M->role[M->pj[q]] == ROLE_SURFACE)
                 b += cl * ry_mps_weight_tamai(M->pr[q], rel) * M->pd[M->pj[q]];
+        if (M->wall_neumann) b += wall_head_source(sim, M, i, cl);
         M->b[M->unk[i]] = b;
         M->xs[M->unk[i]] = ps->f[RY_F_P][i];
     }
@@ -314,6 +341,7 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     double res;
     ry_csr_dist dd;
     const double t0 = ry_wall_time();
+    M->passemble_s += t0 - ta;
     if (M->precond == RY_PRECOND_BOOMERAMG && !ry_sim_distributed(sim)) {
         const double *bb = M->b;
         const ry_amg_slots sl = mps_slots(sim, M);
@@ -341,8 +369,10 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     }
     if (sim->par) sim->par->sync(sim, p, 1, 0);
     if (M->wall_extrapolate || M->thin_neumann) {
+        const double tw = ry_wall_time();
         mps_extrapolate_walls(sim, M);
         if (sim->par) sim->par->sync(sim, p, 1, 0);
+        M->pwall_s += ry_wall_time() - tw;
     }
     return RY_OK;
 }
