@@ -19,7 +19,7 @@ static void cache_row(ry_pair_cache *pc, const ry_sim *sim, size_t i, uint32_t *
     for (size_t q = off[i]; q < off[i + 1]; ++q) {
         if (!partner[kind[nb[q]]]) continue;
         double dx[3]; /* x_i - x_j */
-        const double r2 = ry_sim_separation(sim, nb[q], i, dx);
+        const double r2 = ry_pair_separation(sim, i, nb[q], dx);
         in[c] = (uint32_t)(q - off[i]);
         c += (r2 < rad2) & (r2 > 0) & !(pc->cut && pc->cut[q]);
     }
@@ -27,15 +27,11 @@ static void cache_row(ry_pair_cache *pc, const ry_sim *sim, size_t i, uint32_t *
         const size_t q = off[i] + in[e];
         const uint32_t j = nb[q];
         double dx[3];
-        const double r2 = ry_sim_separation(sim, j, i, dx);
+        const double r2 = ry_pair_separation(sim, i, j, dx);
         const double r = sqrt(r2), f = ry_kernel_dwdr(k, r) / r;
-        double *P = pc->v + (off[i] + e) * RY_PAIR_STRIDE; /* zeros beyond the dimension */
-        P[RY_PW_W] = ry_kernel_w(k, r);
-        P[RY_PW_R2] = r2;
-        for (int d = 0; d < 3; ++d) {
-            P[RY_PW_GX + d] = f * dx[d];
-            P[RY_PW_DX + d] = dx[d];
-        }
+        double *G = pc->g + 3 * (off[i] + e);
+        pc->w[off[i] + e] = ry_kernel_w(k, r);
+        for (int d = 0; d < 3; ++d) G[d] = f * dx[d];
         pc->j[off[i] + e] = j;
     }
     pc->end[i] = off[i] + c;
@@ -47,11 +43,13 @@ ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int nee
     const size_t n = ps->n, m = sim->nl.offset[n];
     if (pc->cap < m) {
         size_t cap = m + m / 4 + 64;
-        double *v = realloc(pc->v, cap * RY_PAIR_STRIDE * sizeof(double));
-        if (v) pc->v = v;
+        double *w = realloc(pc->w, cap * sizeof *w);
+        if (w) pc->w = w;
+        double *g = realloc(pc->g, 3 * cap * sizeof *g);
+        if (g) pc->g = g;
         uint32_t *j = realloc(pc->j, cap * sizeof *j);
         if (j) pc->j = j;
-        RY_CHECK(err, v && j, RY_ERR_NOMEM, "out of memory (pair cache of %zu entries)", m);
+        RY_CHECK(err, w && g && j, RY_ERR_NOMEM, "out of memory (pair cache of %zu entries)", m);
         pc->cap = cap;
     }
     if (pc->cap_n < n) {
@@ -86,7 +84,8 @@ ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int nee
 }
 
 void ry_pair_cache_free(ry_pair_cache *pc) {
-    free(pc->v);
+    free(pc->w);
+    free(pc->g);
     free(pc->j);
     free(pc->end);
     *pc = (ry_pair_cache){0};

@@ -8,12 +8,14 @@
 
 #include "ryushi/sim.h"
 
-/* RY_PAIR_STRIDE doubles per list entry: W, grad_i W_ij (3), r^2, x_ij = x_i - x_j (3). */
-enum { RY_PW_W, RY_PW_GX, RY_PW_GY, RY_PW_GZ, RY_PW_R2, RY_PW_DX, RY_PW_DY, RY_PW_DZ };
-#define RY_PAIR_STRIDE 8
-
+/* The cache keeps what the separation alone cannot give back cheaply: per list entry the
+ * kernel value W (w) and its gradient grad_i W_ij (g, 3 per entry, zeros beyond the dimension),
+ * 36 bytes with the neighbour instead of 68 with r^2 and x_ij. Those two a pass takes from the
+ * positions, which do not change while the cache serves (ry_pair_separation: the same bits as the
+ * fill's). */
 typedef struct ry_pair_cache {
-    double *v;   /* RY_PAIR_STRIDE x (entries of the list) */
+    double *w;   /* W_ij per list entry */
+    double *g;   /* grad_i W_ij, 3 per list entry */
     uint32_t *j; /* the neighbour of each entry */
     size_t *end; /* per particle: the end of its row */
     size_t cap, cap_n;
@@ -24,6 +26,12 @@ typedef struct ry_pair_cache {
      * neighbours; the wall-wall pairs, most of a thick wall's, are read by no pass) */
     const int *partner_rows, *partners;
 } ry_pair_cache;
+
+/* x_ij = x_i - x_j into dx (zeros beyond the dimension) and r^2 of the pair (i, j): the values
+ * the fill computed the entry from, bit for bit, while the positions are those of the fill. */
+static inline double ry_pair_separation(const ry_sim *sim, size_t i, uint32_t j, double dx[3]) {
+    return ry_sim_separation(sim, j, i, dx);
+}
 
 /* Fills the cache for the rows of the particles with need[kind] set (other rows are empty). */
 ry_status ry_pair_cache_fill(ry_pair_cache *pc, const ry_sim *sim, const int need[RY_KIND_COUNT],

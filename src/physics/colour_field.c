@@ -43,9 +43,9 @@ static void contact_angle(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc,
         int near = 0;
         for (size_t q = sim->nl.offset[i]; q < pc->end[i]; ++q) {
             if (ps->kind[pc->j[q]] != RY_KIND_WALL) continue;
-            const double *P = pc->v + q * RY_PAIR_STRIDE;
-            near |= P[RY_PW_R2] < r2max;
-            for (int d = 0; d < dim; ++d) w[d] -= P[RY_PW_GX + d];
+            double dx[3];
+            near |= ry_pair_separation(sim, i, pc->j[q], dx) < r2max;
+            for (int d = 0; d < dim; ++d) w[d] -= pc->g[3 * q + d];
         }
         if (!near) continue;
         for (int d = 0; d < dim; ++d) nw += w[d] * w[d];
@@ -82,7 +82,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
     const uint32_t *nb = pc->j; /* the pairs within the support */
     const size_t *end = pc->end;
     const uint8_t *kind = ps->kind, *mat = ps->material;
-    const double *cv = pc->v;
+    const double *cw = pc->w, *cg = pc->g;
     double *cs = ps->f[cf->f_colour], *kap = ps->f[cf->f_curvature], *nrm = cf->nrm;
     const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
     const int cm = cf->material;
@@ -98,7 +98,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
             if (!mobile[kind[j]]) continue;
-            const double wv = cv[q * RY_PAIR_STRIDE + RY_PW_W] / delta[j];
+            const double wv = cw[q] / delta[j];
             sn += (mat[j] == cm) * wv;
             sd += wv;
         }
@@ -112,9 +112,8 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
             for (size_t q = off[i]; q < end[i]; ++q) {
                 const uint32_t j = nb[q];
                 if (!mobile[kind[j]]) continue;
-                const double *P = cv + q * RY_PAIR_STRIDE;
                 const double f = (cs[j] - cs[i]) / delta[j];
-                for (int d = 0; d < dim; ++d) g[d] += f * P[RY_PW_GX + d];
+                for (int d = 0; d < dim; ++d) g[d] += f * cg[3 * q + d];
             }
         for (int d = 0; d < 3; ++d) nrm[3 * i + d] = g[d];
     }
@@ -142,14 +141,14 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
             const double *nj = nrm + 3 * j;
             const double lj = ln[j];
             if (lj <= thr) continue;
-            const double *P = cv + q * RY_PAIR_STRIDE;
-            double dot = 0, g2 = 0;
+            const double *G = cg + 3 * q;
+            double dot = 0, g2 = 0, dx[3];
             for (int d = 0; d < dim; ++d) {
-                dot += (ni[d] / li - nj[d] / lj) * P[RY_PW_GX + d];
-                g2 += P[RY_PW_GX + d] * P[RY_PW_GX + d];
+                dot += (ni[d] / li - nj[d] / lj) * G[d];
+                g2 += G[d] * G[d];
             }
             num += dot / delta[j];
-            den += sqrt(P[RY_PW_R2] * g2) / delta[j];
+            den += sqrt(ry_pair_separation(sim, i, j, dx) * g2) / delta[j];
         }
         if (den <= 0) continue;
         kap[i] = dim * num / den;
@@ -170,7 +169,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
                 if (!mobile[kind[j]]) continue;
                 const double lj = ln[j];
                 if (lj <= thr) continue;
-                const double wv = lj * cv[q * RY_PAIR_STRIDE + RY_PW_W] / delta[j];
+                const double wv = lj * cw[q] / delta[j];
                 num += wv * kap[j];
                 den += wv;
             }

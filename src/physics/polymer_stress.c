@@ -61,7 +61,7 @@ ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = pc->j; /* the pairs within the support */
     const size_t *end = pc->end;
-    const double *cv = pc->v;
+    const double *cw = pc->w, *cg = pc->g;
     const double *v[3], *rho = ps->f[RY_F_RHO];
     for (int d = 0; d < 3; ++d) v[d] = ps->f[RY_F_VX + (d < dim ? d : 0)];
     const double *tau[6] = {NULL};
@@ -83,25 +83,26 @@ ry_status ry_sph_rheo_rates(ry_sph_rheo *r, ry_sim *sim, const ry_pair_cache *pc
          * over the mobile and (with vwall) fixed neighbours; the stress over the mobile. */
         double mv[3][3] = {{0}}, mt[3][3] = {{0}}, gv[6][3] = {{0}}, gt[6][3] = {{0}};
         for (size_t q = off[i]; q < end[i]; ++q) {
-            const double *P = cv + q * RY_PAIR_STRIDE;
-            if (P[RY_PW_W] == 0) continue;
+            if (cw[q] == 0) continue;
             const uint32_t j = nb[q];
             const int mj = mobile[ps->kind[j]];
             if (!mj && !vwall) continue;
-            const double vj = vol[j];
+            const double vj = vol[j], *G = cg + 3 * q;
+            double dx[3];
+            ry_pair_separation(sim, i, j, dx);
             for (int a = 0; a < dim; ++a)
                 for (int b = 0; b < dim; ++b) {
-                    const double e = -vj * P[RY_PW_DX + a] * P[RY_PW_GX + b];
+                    const double e = -vj * dx[a] * G[b];
                     mv[a][b] += e;
                     if (mj) mt[a][b] += e;
                 }
             for (int a = 0; a < dim; ++a) {
                 const double du = (mj ? v[a][j] : vwall[a][j]) - v[a][i];
-                for (int b = 0; b < dim; ++b) gv[a][b] += vj * du * P[RY_PW_GX + b];
+                for (int b = 0; b < dim; ++b) gv[a][b] += vj * du * G[b];
             }
             for (int k = 0; r->ob && mj && k < nt; ++k) {
                 const double dt = tau[k][j] - tau[k][i];
-                for (int b = 0; b < dim; ++b) gt[k][b] += vj * dt * P[RY_PW_GX + b];
+                for (int b = 0; b < dim; ++b) gt[k][b] += vj * dt * G[b];
             }
         }
         ry_solve_rows(dim, mv, dim, gv, gv); /* a particle with too few neighbours: L = 0 */

@@ -93,7 +93,9 @@ static void test_sums_and_identity(void **state) {
             for (int d = 0; d < 3; ++d) dji[d] = dt2 / (m[j] * di2) * G[i][j][d];
             a_h += dot(dii[i], G[i][j]) - dot(dji, G[i][j]);
             double t = iisph_pair_jacobi(S[i], G[i][j], 3);
-            iisph_pair_jacobi_mobile(&t, S[j], dii[j], p[j], dt2 / (m[j] * di2) * p[i], G[i][j], 3);
+            double u[3]; /* d_jj p_j + S_j */
+            for (int d = 0; d < 3; ++d) u[d] = dii[j][d] * p[j] + S[j][d];
+            iisph_pair_jacobi_mobile(&t, u, dt2 / (m[j] * di2) * p[i], G[i][j], 3);
             rest += t;
             double da[3];
             for (int d = 0; d < 3; ++d) da[d] = acc[i][d] - acc[j][d];

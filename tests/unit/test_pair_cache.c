@@ -55,8 +55,8 @@ static void check(int dim) {
             assert_int_equal(full.end[i], part.end[i]);
             const size_t k = full.end[i] - off[i];
             assert_memory_equal(full.j + off[i], part.j + off[i], k * sizeof *full.j);
-            assert_memory_equal(full.v + off[i] * RY_PAIR_STRIDE, part.v + off[i] * RY_PAIR_STRIDE,
-                                k * RY_PAIR_STRIDE * sizeof(double));
+            assert_memory_equal(full.w + off[i], part.w + off[i], k * sizeof(double));
+            assert_memory_equal(full.g + 3 * off[i], part.g + 3 * off[i], 3 * k * sizeof(double));
             continue;
         }
         ++nwall;
@@ -65,8 +65,8 @@ static void check(int dim) {
             if (ps->kind[full.j[q]] != RY_KIND_FLUID) continue;
             assert_true(e < part.end[i]);
             assert_int_equal(part.j[e], full.j[q]);
-            assert_memory_equal(part.v + e * RY_PAIR_STRIDE, full.v + q * RY_PAIR_STRIDE,
-                                RY_PAIR_STRIDE * sizeof(double));
+            assert_memory_equal(part.w + e, full.w + q, sizeof(double));
+            assert_memory_equal(part.g + 3 * e, full.g + 3 * q, 3 * sizeof(double));
             ++e;
         }
         assert_int_equal(e, part.end[i]);

@@ -208,8 +208,9 @@ static void iisph_free(void *state) {
 static ry_status ensure(iisph *s, size_t n, ry_error *err) {
     if (s->cap >= n) return RY_OK;
     size_t cap = n + n / 4 + 16;
-    /* one block: delta, dstar, aii (1 each), dii, sum, acc (3 each), pnew (1), vg (3), perr (1) */
-    double *b = realloc(s->delta, cap * 17 * sizeof(double));
+    /* one block: delta, dstar, aii (1 each), dii, sum, acc (3 each), pnew (1), vg (3), perr (1),
+     * pq (1), djp (3) */
+    double *b = realloc(s->delta, cap * 21 * sizeof(double));
     RY_CHECK(err, b != NULL, RY_ERR_NOMEM, "out of memory (%zu particles)", n);
     s->delta = b;
     s->dstar = b + cap;
@@ -220,6 +221,8 @@ static ry_status ensure(iisph *s, size_t n, ry_error *err) {
     s->acc = b + 10 * cap;
     for (int d = 0; d < 3; ++d) s->vg[d] = b + (13 + d) * cap;
     s->perr = b + 16 * cap;
+    s->pq = b + 17 * cap;
+    s->djp = b + 18 * cap;
     uint8_t *lt = realloc(s->lt, cap);
     if (lt) s->lt = lt;
     double *pl = realloc(s->pl, cap * sizeof *pl);

@@ -41,7 +41,7 @@ typedef struct wall_map {
 
 /* The pairs of the pressure solve's iterations (iisph_grad_list_build): for each mobile
  * particle i (from off[i] to off[i + 1]) its neighbours j with a non-zero kernel gradient and
- * grad_i W_ij (3 per entry): an iteration reads 28 bytes per pair instead of the cache's 64. */
+ * grad_i W_ij (3 per entry), 28 bytes per pair, contiguous. */
 typedef struct grad_list {
     size_t cap_n, cap_e;
     size_t *off;
@@ -65,6 +65,8 @@ typedef struct iisph {
     ry_pair_cache pc;
     double *delta, *dstar, *aii, *dii, *sum, *pnew, *acc; /* per particle scratch */
     double *perr;  /* per particle: its density error in the last Jacobi sweep (0: not counted) */
+    double *pq;    /* per particle, in each Jacobi sweep: p / delta^2 (a mobile particle) */
+    double *djp;   /* and d_ii p + S (3): the part of D_j that is j's own */
     double *vg[3]; /* velocity seen by the viscous term, one array per component */
     size_t cap;
     double *mu;       /* dynamic viscosity per material */

@@ -49,17 +49,16 @@ RY_HD static inline void iisph_pair_sum(double *s, double f, const double *G, in
 }
 
 /* The Jacobi term (S_i - D_j) . G in two parts: S_i . G for every neighbour, and for a mobile
- * j the part -D_j . G from s_j = S_j, d_jj, p_j and cp_ji = dt^2 p_i / (m_j delta_i^2) (0 where
+ * j the part -D_j . G from u_j = d_jj p_j + S_j and cp_ji = dt^2 p_i / (m_j delta_i^2) (0 where
  * j does not see i), subtracted from t. */
 RY_HD static inline double iisph_pair_jacobi(const double *s_i, const double *G, int dim) {
     double t = 0;
     for (int d = 0; d < dim; ++d) t += s_i[d] * G[d];
     return t;
 }
-RY_HD static inline void iisph_pair_jacobi_mobile(double *t, const double *s_j, const double *d_jj,
-                                                  double p_j, double cp_ji, const double *G,
-                                                  int dim) {
-    for (int d = 0; d < dim; ++d) *t -= (d_jj[d] * p_j + s_j[d] - cp_ji * G[d]) * G[d];
+RY_HD static inline void iisph_pair_jacobi_mobile(double *t, const double *u_j, double cp_ji,
+                                                  const double *G, int dim) {
+    for (int d = 0; d < dim; ++d) *t -= (u_j[d] - cp_ji * G[d]) * G[d];
 }
 
 /* -(p_i / delta_i^2 + p_j / delta_j^2) G into a (m_i a_i). */

@@ -11,7 +11,9 @@
 #include "schemes/iisph/iisph_internal.h"
 #include "schemes/iisph/iisph_pair.h"
 
-/* The pairs of the solve's iterations (grad_list), once per step: those pair_skip keeps. */
+/* The pairs of the solve's iterations (grad_list), once per step: those pair_skip keeps with a
+ * non-zero gradient, in a compact copy. (Read in place, from the cache's rows with the gaps of
+ * the list's skin between them, the iterations ran slower: each stream fetches the gaps.) */
 ry_status iisph_grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
@@ -19,7 +21,7 @@ ry_status iisph_grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
     const uint32_t *nb = s->pc.j; /* the pairs within the support */
     const size_t *end = s->pc.end;
     const uint8_t *kind = ps->kind;
-    const double *cv = s->pc.v;
+    const double *cg = s->pc.g;
     grad_list *l = &s->gl;
     if (l->cap_n < n + 1) {
         const size_t c = n + n / 4 + 16;
@@ -28,13 +30,13 @@ ry_status iisph_grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
         RY_CHECK(err, ok, RY_ERR_NOMEM, "out of memory (pressure pairs)");
         l->cap_n = c;
     }
-#define RY_GRAD_NONZERO(P) ((P)[RY_PW_GX] != 0 || (P)[RY_PW_GY] != 0 || (P)[RY_PW_GZ] != 0)
+#define RY_GRAD_NONZERO(G) ((G)[0] != 0 || (G)[1] != 0 || (G)[2] != 0)
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < n; ++i) {
         size_t c = 0;
         if (MOBILE[kind[i]])
             for (size_t q = off[i]; q < end[i]; ++q)
-                c += RY_GRAD_NONZERO(cv + q * RY_PAIR_STRIDE) && !pair_skip(s, i, nb[q]);
+                c += RY_GRAD_NONZERO(cg + 3 * q) && !pair_skip(s, i, nb[q]);
         l->off[i + 1] = c;
     }
     l->off[0] = 0;
@@ -53,45 +55,52 @@ ry_status iisph_grad_list_build(ry_sim *sim, iisph *s, ry_error *err) {
         size_t e = l->off[i];
         if (!MOBILE[kind[i]]) continue;
         for (size_t q = off[i]; q < end[i]; ++q) {
-            const double *P = cv + q * RY_PAIR_STRIDE;
-            if (!RY_GRAD_NONZERO(P) || pair_skip(s, i, nb[q])) continue;
+            const double *G = cg + 3 * q;
+            if (!RY_GRAD_NONZERO(G) || pair_skip(s, i, nb[q])) continue;
             l->j[e] = nb[q];
-            for (int d = 0; d < 3; ++d) l->g[3 * e + d] = P[RY_PW_GX + d];
+            for (int d = 0; d < 3; ++d) l->g[3 * e + d] = G[d];
             e++;
         }
     }
 #undef RY_GRAD_NONZERO
     return RY_OK;
 }
-/* p_j / delta_j^2 of the pair (i, j): a mobile j's own, a wall's extrapolated pressure with the
- * volume of i (a light row: the walls and the heavy particles with the light phase's
- * extrapolation pl); neighbour_pressure_sum sums it times grad_i W_ij over the pairs of row i,
- * inlined with a literal dim so that the sums stay in registers. */
+/* p_j / delta_j^2 of the pair (i, j): a mobile j's own (pq, p / delta^2 of each mobile
+ * particle), a wall's extrapolated pressure with the volume of i, di2 = delta_i^2 (a light row:
+ * the walls and the heavy particles with the light phase's extrapolation pl);
+ * neighbour_pressure_sum sums it times grad_i W_ij over the pairs of row i, inlined with a
+ * literal dim so that the sums stay in registers. */
 static inline double neighbour_pressure(const iisph *s, const uint8_t *kind, const double *p,
-                                        size_t i, uint32_t j) {
-    const double *delta = s->delta;
-    if (pair_force_mobile(s, kind, i, j)) return p[j] / (delta[j] * delta[j]);
+                                        const double *pq, double di2, size_t i, uint32_t j) {
+    if (pair_force_mobile(s, kind, i, j)) return pq[j];
     const double *pw = s->light_on && s->lt[i] ? s->pl : p;
-    return pw[j] / (delta[i] * delta[i]);
+    return pw[j] / di2;
 }
 
 static inline void neighbour_pressure_sum(const iisph *s, const uint8_t *kind, const double *p,
                                           size_t i, double *a, int dim) {
     const grad_list *gl = &s->gl;
+    const double di2 = s->delta[i] * s->delta[i];
     for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
-        iisph_pair_sum(a, neighbour_pressure(s, kind, p, i, gl->j[e]), gl->g + 3 * e, dim);
+        iisph_pair_sum(a, neighbour_pressure(s, kind, p, s->pq, di2, i, gl->j[e]), gl->g + 3 * e,
+                       dim);
     }
 }
 
-/* S_i = sum_j d_ij p_j = -(dt^2 / m_i) sum_j p_j / delta_j^2 grad_i W_ij (row i). */
+/* S_i = sum_j d_ij p_j = -(dt^2 / m_i) sum_j p_j / delta_j^2 grad_i W_ij (row i), and the part
+ * of D_i that is i's own, d_ii p_i + S_i, which the Jacobi sums of i's neighbours read. */
 static inline void pressure_sum_row(const iisph *s, const uint8_t *kind, const double *m,
-                                    const double *p, double dt2, size_t i, double *out, int dim) {
+                                    const double *p, double dt2, size_t i, double *out, double *djp,
+                                    int dim) {
     double a[3] = {0, 0, 0};
     if (MOBILE[kind[i]]) {
         neighbour_pressure_sum(s, kind, p, i, a, dim);
         for (int d = 0; d < dim; ++d) a[d] *= -dt2 / m[i];
     }
-    for (int d = 0; d < 3; ++d) out[d] = a[d];
+    for (int d = 0; d < 3; ++d) {
+        out[d] = a[d];
+        djp[d] = MOBILE[kind[i]] ? s->dii[3 * i + d] * p[i] + a[d] : 0.0;
+    }
 }
 
 static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
@@ -99,14 +108,18 @@ static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
     const size_t n = ps->n;
     const int dim = sim->dim;
     const uint8_t *kind = ps->kind;
-    const double *m = ps->f[RY_F_MASS];
+    const double *m = ps->f[RY_F_MASS], *delta = s->delta;
+    double *pq = s->pq;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) pq[i] = MOBILE[kind[i]] ? p[i] / (delta[i] * delta[i]) : 0.0;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
-        double *out = s->sum + 3 * i;
+        if (!MOBILE[kind[i]]) continue; /* (zeros, iisph_pressure_solve) */
+        double *out = s->sum + 3 * i, *djp = s->djp + 3 * i;
         if (dim == 3)
-            pressure_sum_row(s, kind, m, p, dt2, i, out, 3);
+            pressure_sum_row(s, kind, m, p, dt2, i, out, djp, 3);
         else
-            pressure_sum_row(s, kind, m, p, dt2, i, out, 2);
+            pressure_sum_row(s, kind, m, p, dt2, i, out, djp, 2);
     }
 }
 
@@ -117,6 +130,7 @@ static inline double jacobi_rest(const iisph *s, const grad_list *gl, const uint
     const double *si = s->sum + 3 * i;
     const double di2 = s->delta[i] * s->delta[i];
     double rest = 0;
+    double mlast = NAN, clast = 0; /* d_ji p_i for the last mass seen (one per material) */
     for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e) {
         const uint32_t j = gl->j[e];
         const double *G = gl->g + 3 * e;
@@ -124,8 +138,15 @@ static inline double jacobi_rest(const iisph *s, const grad_list *gl, const uint
         if (MOBILE[kind[j]]) {
             /* D_j without the part from p_i: d_jj p_j + S_j - d_ji p_i (a heavy j of a light
              * row: none, j does not see i) */
-            const double cji = pair_force_mobile(s, kind, i, j) ? dt2 / (m[j] * di2) * p[i] : 0.0;
-            iisph_pair_jacobi_mobile(&t, s->sum + 3 * j, s->dii + 3 * j, p[j], cji, G, dim);
+            double cji = 0.0;
+            if (pair_force_mobile(s, kind, i, j)) {
+                if (m[j] != mlast) {
+                    mlast = m[j];
+                    clast = dt2 / (mlast * di2) * p[i];
+                }
+                cji = clast;
+            }
+            iisph_pair_jacobi_mobile(&t, s->djp + 3 * j, cji, G, dim);
         }
         rest += t;
     }
@@ -216,6 +237,15 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
         nfluid = sim->par->sum(sim, nfluid);
         nlight = sim->par->sum(sim, nlight);
     }
+    /* What the sweeps leave alone: the sums of the particles that are not mobile and the
+     * errors of those that are not fluid. */
+    double *perr = s->perr;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        if (kind[i] != RY_KIND_FLUID) perr[i] = 0.0;
+        if (MOBILE[kind[i]]) continue;
+        for (int d = 0; d < 3; ++d) s->sum[3 * i + d] = s->djp[3 * i + d] = 0.0;
+    }
     const double omega = s->omega;
     long it = 0;
     double avg = 0;
@@ -227,15 +257,13 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
             if (sim->par) sim->par->sync(sim, s->pl, 1, 0);
         }
         pressure_sums(sim, s, p, dt2);
-        if (sim->par) sim->par->sync(sim, s->sum, 3, 0);
-        double *perr = s->perr;
+        if (sim->par) {
+            sim->par->sync(sim, s->sum, 3, 0);
+            sim->par->sync(sim, s->djp, 3, 0);
+        }
 #pragma omp parallel for schedule(dynamic, 64)
         for (size_t i = 0; i < n; ++i) {
-            if (kind[i] != RY_KIND_FLUID) {
-                pnew[i] = p[i];
-                perr[i] = 0.0;
-                continue;
-            }
+            if (kind[i] != RY_KIND_FLUID) continue; /* (its pressure stays, its error is 0) */
             const double rest = dim == 3   ? jacobi_rest(s, gl, kind, m, p, dt2, i, 3)
                                 : dim == 2 ? jacobi_rest(s, gl, kind, m, p, dt2, i, 2)
                                            : jacobi_rest(s, gl, kind, m, p, dt2, i, dim);
@@ -261,7 +289,9 @@ long iisph_pressure_solve(ry_sim *sim, iisph *s, double dt) {
             else
                 esum += perr[i];
         }
-        memcpy(p, pnew, n * sizeof *p);
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; ++i)
+            if (kind[i] == RY_KIND_FLUID) p[i] = pnew[i];
         if (sim->par) {
             sim->par->sync(sim, p, 1, 0);
             esum = sim->par->sum(sim, esum);
@@ -290,13 +320,16 @@ void iisph_pressure_force(ry_sim *sim, iisph *s, double dt, double *vmax2_out, d
     const grad_list *gl = &s->gl;
     const double *m = ps->f[RY_F_MASS], *delta = s->delta, *p = ps->f[RY_F_P];
     double vmax2 = 0, amax2 = 0;
+    double *pq = s->pq; /* p / delta^2 of the final pressures */
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) pq[i] = MOBILE[ps->kind[i]] ? p[i] / (delta[i] * delta[i]) : 0.0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : vmax2, amax2)
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[ps->kind[i]]) continue;
-        const double pi = p[i] / (delta[i] * delta[i]);
+        const double di2 = delta[i] * delta[i], pi = p[i] / di2;
         double a[3] = {0, 0, 0};
         for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e)
-            iisph_pair_pressure(a, pi, neighbour_pressure(s, ps->kind, p, i, gl->j[e]),
+            iisph_pair_pressure(a, pi, neighbour_pressure(s, ps->kind, p, s->pq, di2, i, gl->j[e]),
                                 gl->g + 3 * e, dim);
         double a2 = 0, v2 = 0;
         for (int d = 0; d < dim; ++d) {

@@ -37,7 +37,7 @@ ry_status iisph_surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = s->pc.j; /* the pairs within the support */
     const size_t *end = s->pc.end;
-    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+    const double *cg = s->pc.g, *m = ps->f[RY_F_MASS], *delta = s->delta;
     /* The reference R_i the force counts pressures from: P_i at the surface, and beneath it the
      * mean Laplace jump of all the surface particles (for one drop: its jump). With 0 there,
      * a particle within a kernel's reach of the surface, short of neighbours on the empty side,
@@ -68,9 +68,8 @@ ry_status iisph_surface_tension(ry_sim *sim, iisph *s, ry_error *err) {
         const double di2 = 1.0 / (delta[i] * delta[i]);
         for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
-            const double *Q = cv + q * RY_PAIR_STRIDE;
             const double f = di2 + (MOBILE[ps->kind[j]] ? 1.0 / (delta[j] * delta[j]) : di2);
-            for (int d = 0; d < dim; ++d) a[d] += f * Q[RY_PW_GX + d];
+            for (int d = 0; d < dim; ++d) a[d] += f * cg[3 * q + d];
         }
         for (int d = 0; d < dim; ++d) s->acc[3 * i + d] += R[i] * a[d] / m[i];
     }

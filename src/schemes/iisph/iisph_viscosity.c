@@ -17,14 +17,14 @@ static inline double dyn_viscosity(const ry_sim *sim, const iisph *s, size_t i) 
 }
 
 /* The Morris coefficient mu_ij L_ij (physics/viscosity_morris1997.h, twice the harmonic mean of
- * the viscosities) of a cached pair P (its separation, kernel gradient and r^2) with the
- * volume vj of j. */
-static inline double morris_pair(const double *P, double vj, double mui, double muj, double eta2,
-                                 int dim) {
+ * the viscosities) of a pair with separation dx, r^2 r2 and kernel gradient G, with the volume
+ * vj of j. */
+static inline double morris_pair(const double *dx, double r2, const double *G, double vj,
+                                 double mui, double muj, double eta2, int dim) {
     double xg = 0;
-    for (int d = 0; d < dim; ++d) xg += P[RY_PW_DX + d] * P[RY_PW_GX + d];
+    for (int d = 0; d < dim; ++d) xg += dx[d] * G[d];
     return ry_morris_coefficient(ry_morris_mu_harmonic2(mui, muj),
-                                 ry_morris_weight(vj, xg, 1.0 / (P[RY_PW_R2] + eta2)));
+                                 ry_morris_weight(vj, xg, 1.0 / (r2 + eta2)));
 }
 
 /* The velocity the viscous term sees at each particle (s->vg): its own, or at a wall
@@ -37,7 +37,7 @@ static void viscous_velocities(ry_sim *sim, iisph *s) {
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = s->pc.j; /* the pairs within the support */
     const size_t *end = s->pc.end;
-    const double *cv = s->pc.v;
+    const double *cw = s->pc.w;
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         ry_adami_sums a = {0, 0, {0, 0, 0}};
@@ -45,7 +45,7 @@ static void viscous_velocities(ry_sim *sim, iisph *s) {
             for (size_t q = off[i]; q < end[i]; ++q) {
                 const uint32_t j = nb[q];
                 if (!MOBILE[ps->kind[j]]) continue;
-                const double w = cv[q * RY_PAIR_STRIDE + RY_PW_W];
+                const double w = cw[q];
                 double vj[3] = {0, 0, 0};
                 for (int d = 0; d < dim; ++d) vj[d] = ps->f[RY_F_VX + d][j];
                 ry_adami_add_weight(&a, w);
@@ -67,31 +67,32 @@ static inline void force_row(const ry_sim *sim, const iisph *s, size_t i, const 
     const uint32_t *nb = s->pc.j; /* the pairs within the support */
     const size_t *end = s->pc.end;
     const uint8_t *kind = ps->kind;
-    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+    const double *cw = s->pc.w, *cg = s->pc.g, *m = ps->f[RY_F_MASS], *delta = s->delta;
     const double eta2 = ry_morris_eta2(sim->kernel.h), cvis = 2.0 * (dim + 2);
     double a[3] = {0, 0, 0};
     if (MOBILE[kind[i]]) {
         const double mui = dyn_viscosity(sim, s, i);
         for (size_t q = off[i]; !s->implicit && q < end[i]; ++q) {
             const uint32_t j = nb[q];
-            const double *P = cv + q * RY_PAIR_STRIDE;
-            if (P[RY_PW_W] == 0 || pair_skip(s, i, j)) continue;
+            if (cw[q] == 0 || pair_skip(s, i, j)) continue;
             /* a light row's heavy neighbour is a wall to it, always without slip */
             const int wall = !pair_force_mobile(s, kind, i, j);
             if (!MOBILE[kind[j]] && s->slip) continue;
             const double muj = wall ? mui : dyn_viscosity(sim, s, j);
             if (mui + muj <= 0) continue;
-            const double vj = wall ? 1.0 / delta[i] : 1.0 / delta[j];
+            const double vj = wall ? 1.0 / delta[i] : 1.0 / delta[j], *G = cg + 3 * q;
+            double dx[3];
+            const double r2 = ry_pair_separation(sim, i, j, dx);
             if (s->morris) {
-                const double f = morris_pair(P, vj, mui, muj, eta2, dim);
+                const double f = morris_pair(dx, r2, G, vj, mui, muj, eta2, dim);
                 for (int d = 0; d < dim; ++d) a[d] += f * (vg[d][i] - vg[d][j]);
                 continue;
             }
             const double mu = 2 * mui * muj / (mui + muj);
             double vx = 0;
-            for (int d = 0; d < dim; ++d) vx += (vg[d][i] - vg[d][j]) * P[RY_PW_DX + d];
-            const double f = cvis * vj * mu * vx / (P[RY_PW_R2] + eta2);
-            for (int d = 0; d < dim; ++d) a[d] += f * P[RY_PW_GX + d];
+            for (int d = 0; d < dim; ++d) vx += (vg[d][i] - vg[d][j]) * dx[d];
+            const double f = cvis * vj * mu * vx / (r2 + eta2);
+            for (int d = 0; d < dim; ++d) a[d] += f * G[d];
         }
         const double inv_rho = 1.0 / (m[i] * delta[i]);
         for (int d = 0; d < dim; ++d) a[d] = a[d] * inv_rho + sim->gravity[d];
@@ -110,7 +111,7 @@ ry_status iisph_densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
     const size_t *off = sim->nl.offset;
     const size_t *end = s->pc.end; /* the pairs within the support */
     const uint8_t *kind = ps->kind;
-    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS];
+    const double *cw = s->pc.w, *m = ps->f[RY_F_MASS];
     const double w0 = sim->kernel.norm * ry_kernel_shape(sim->kernel.type, 0.0);
     double *delta = s->delta, *acc = s->acc;
 #pragma omp parallel for schedule(static)
@@ -118,7 +119,7 @@ ry_status iisph_densities_and_forces(ry_sim *sim, iisph *s, ry_error *err) {
         double sw = w0;
         if (MOBILE[kind[i]])
             for (size_t q = off[i]; q < end[i]; ++q)
-                if (!pair_skip(s, i, s->pc.j[q])) sw += cv[q * RY_PAIR_STRIDE + RY_PW_W];
+                if (!pair_skip(s, i, s->pc.j[q])) sw += cw[q];
         delta[i] = sw;
     }
     if (sim->par) sim->par->sync(sim, delta, 1, 0); /* halo copies: their owners' values */
@@ -186,7 +187,7 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
     const size_t *off = sim->nl.offset;
     const uint32_t *nb = s->pc.j; /* the pairs within the support */
     const size_t *end = s->pc.end;
-    const double *cv = s->pc.v, *m = ps->f[RY_F_MASS], *delta = s->delta;
+    const double *cw = s->pc.w, *cg = s->pc.g, *m = ps->f[RY_F_MASS], *delta = s->delta;
     const double eta2 = ry_morris_eta2(sim->kernel.h);
     ry_csr *A = &s->A;
     RY_TRY(ry_csr_reserve(A, nunk, 0, err));
@@ -194,8 +195,7 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
     for (size_t i = 0; i < n; ++i) {
         if (s->unk[i] < 0) continue;
         size_t len = 1;
-        for (size_t q = off[i]; q < end[i]; ++q)
-            len += s->unk[nb[q]] >= 0 && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
+        for (size_t q = off[i]; q < end[i]; ++q) len += s->unk[nb[q]] >= 0 && cw[q] != 0;
         A->row[(size_t)s->unk[i] + 1] = len;
     }
     RY_TRY(ry_csr_rows_from_lengths(A, err));
@@ -208,14 +208,15 @@ ry_status iisph_viscous_implicit(ry_sim *sim, iisph *s, double dt, ry_error *err
         double known[3] = {0, 0, 0};
         for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
-            const double *P = cv + q * RY_PAIR_STRIDE;
-            if (P[RY_PW_W] == 0) continue;
+            if (cw[q] == 0) continue;
             const int wall = !MOBILE[ps->kind[j]];
             double c = 0;
             if (!(wall && s->slip)) {
                 const double muj = wall ? mui : dyn_viscosity(sim, s, j);
                 const double vj = wall ? vi : 1.0 / delta[j];
-                c = -dt * vi * morris_pair(P, vj, mui, muj, eta2, dim);
+                double dx[3];
+                const double r2 = ry_pair_separation(sim, i, j, dx);
+                c = -dt * vi * morris_pair(dx, r2, cg + 3 * q, vj, mui, muj, eta2, dim);
             }
             ry_csr_row_pair(&row, c, s->unk[j]); /* (a wall: a known velocity) */
             if (wall)

@@ -43,7 +43,7 @@ ry_status iisph_wall_map_build(ry_sim *sim, iisph *s, wall_map *m, double *p, in
     const uint32_t *nb = s->pc.j; /* the pairs within the support */
     const size_t *end = s->pc.end;
     const uint8_t *kind = ps->kind;
-    const double *cv = s->pc.v, *rho = ps->f[RY_F_RHO];
+    const double *cw = s->pc.w, *rho = ps->f[RY_F_RHO];
     if (m->cap_n < n + 1) {
         const size_t c = n + n / 4 + 16;
         int ok = 1;
@@ -58,7 +58,7 @@ ry_status iisph_wall_map_build(ry_sim *sim, iisph *s, wall_map *m, double *p, in
         size_t c = 0;
         if (wall_target(s, kind, i, map))
             for (size_t q = off[i]; q < end[i]; ++q)
-                c += wall_source(s, kind, nb[q], map) && cv[q * RY_PAIR_STRIDE + RY_PW_W] != 0;
+                c += wall_source(s, kind, nb[q], map) && cw[q] != 0;
         m->cnt[i] = c;
     }
     m->nw = 0;
@@ -89,11 +89,12 @@ ry_status iisph_wall_map_build(ry_sim *sim, iisph *s, wall_map *m, double *p, in
         size_t e = m->off[k];
         for (size_t q = off[i]; q < end[i]; ++q) {
             const uint32_t j = nb[q];
-            const double *P = cv + q * RY_PAIR_STRIDE;
-            if (!wall_source(s, kind, j, map) || P[RY_PW_W] == 0) continue;
+            if (!wall_source(s, kind, j, map) || cw[q] == 0) continue;
+            double dx[3];
+            ry_pair_separation(sim, i, j, dx);
             m->j[e] = j;
-            m->wt[e] = P[RY_PW_W];
-            m->h[e] = ry_adami_head(sim->gravity, P + RY_PW_DX, dim, rho[j]);
+            m->wt[e] = cw[q];
+            m->h[e] = ry_adami_head(sim->gravity, dx, dim, rho[j]);
             e++;
         }
     }

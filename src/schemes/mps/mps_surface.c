@@ -158,8 +158,7 @@ ry_status mps_colour_accelerate(ry_sim *sim, mps *M, double *const a[3], ry_erro
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
         double sw = w0;
-        for (size_t q = sim->nl.offset[i]; q < M->pc.end[i]; ++q)
-            sw += M->pc.v[q * RY_PAIR_STRIDE + RY_PW_W];
+        for (size_t q = sim->nl.offset[i]; q < M->pc.end[i]; ++q) sw += M->pc.w[q];
         M->cdelta[i] = sw;
         M->cacc[3 * i] = M->cacc[3 * i + 1] = M->cacc[3 * i + 2] = 0;
     }
