@@ -87,20 +87,27 @@ static inline void neighbour_pressure_sum(const iisph *s, const uint8_t *kind, c
     }
 }
 
-/* S_i = sum_j d_ij p_j = -(dt^2 / m_i) sum_j p_j / delta_j^2 grad_i W_ij (row i), and the part
- * of D_i that is i's own, d_ii p_i + S_i, which the Jacobi sums of i's neighbours read. */
+/* S_i = sum_j d_ij p_j = -(dt^2 / m_i) sum_j p_j / delta_j^2 grad_i W_ij (row i of a mobile
+ * particle), and the part of D_i that is i's own, d_ii p_i + S_i, which the Jacobi sums of i's
+ * neighbours read. */
 static inline void pressure_sum_row(const iisph *s, const uint8_t *kind, const double *m,
                                     const double *p, double dt2, size_t i, double *out, double *djp,
                                     int dim) {
     double a[3] = {0, 0, 0};
-    if (MOBILE[kind[i]]) {
-        neighbour_pressure_sum(s, kind, p, i, a, dim);
-        for (int d = 0; d < dim; ++d) a[d] *= -dt2 / m[i];
-    }
+    neighbour_pressure_sum(s, kind, p, i, a, dim);
+    for (int d = 0; d < dim; ++d) a[d] *= -dt2 / m[i];
     for (int d = 0; d < 3; ++d) {
         out[d] = a[d];
-        djp[d] = MOBILE[kind[i]] ? s->dii[3 * i + d] * p[i] + a[d] : 0.0;
+        djp[d] = s->dii[3 * i + d] * p[i] + a[d];
     }
+}
+
+/* pq = p / delta^2 of every mobile particle (0 for the others). */
+static void pressure_over_delta2(const ry_particles *ps, iisph *s, const double *p) {
+    const double *delta = s->delta;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < ps->n; ++i)
+        s->pq[i] = MOBILE[ps->kind[i]] ? p[i] / (delta[i] * delta[i]) : 0.0;
 }
 
 static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
@@ -108,10 +115,8 @@ static void pressure_sums(ry_sim *sim, iisph *s, const double *p, double dt2) {
     const size_t n = ps->n;
     const int dim = sim->dim;
     const uint8_t *kind = ps->kind;
-    const double *m = ps->f[RY_F_MASS], *delta = s->delta;
-    double *pq = s->pq;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) pq[i] = MOBILE[kind[i]] ? p[i] / (delta[i] * delta[i]) : 0.0;
+    const double *m = ps->f[RY_F_MASS];
+    pressure_over_delta2(ps, s, p);
 #pragma omp parallel for schedule(dynamic, 64)
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[kind[i]]) continue; /* (zeros, iisph_pressure_solve) */
@@ -320,16 +325,15 @@ void iisph_pressure_force(ry_sim *sim, iisph *s, double dt, double *vmax2_out, d
     const grad_list *gl = &s->gl;
     const double *m = ps->f[RY_F_MASS], *delta = s->delta, *p = ps->f[RY_F_P];
     double vmax2 = 0, amax2 = 0;
-    double *pq = s->pq; /* p / delta^2 of the final pressures */
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) pq[i] = MOBILE[ps->kind[i]] ? p[i] / (delta[i] * delta[i]) : 0.0;
+    pressure_over_delta2(ps, s, p); /* of the final pressures */
+    const double *pq = s->pq;
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : vmax2, amax2)
     for (size_t i = 0; i < n; ++i) {
         if (!MOBILE[ps->kind[i]]) continue;
-        const double di2 = delta[i] * delta[i], pi = p[i] / di2;
+        const double di2 = delta[i] * delta[i], pi = pq[i];
         double a[3] = {0, 0, 0};
         for (size_t e = gl->off[i]; e < gl->off[i + 1]; ++e)
-            iisph_pair_pressure(a, pi, neighbour_pressure(s, ps->kind, p, s->pq, di2, i, gl->j[e]),
+            iisph_pair_pressure(a, pi, neighbour_pressure(s, ps->kind, p, pq, di2, i, gl->j[e]),
                                 gl->g + 3 * e, dim);
         double a2 = 0, v2 = 0;
         for (int d = 0; d < dim; ++d) {

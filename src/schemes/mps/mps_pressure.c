@@ -277,12 +277,12 @@ ry_status mps_pressure(ry_sim *sim, mps *M, double dt, ry_error *err) {
     const int fold = sim->par && !ry_sim_distributed(sim);
     const double ta = ry_wall_time();
     size_t nunk = 0, nwall = 0;
-    for (size_t i = 0; i < n; ++i)
-        M->unk[i] = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) && !wall_out(sim, M, i) &&
-                            !(fold && ry_sim_is_halo(sim, i))
-                        ? (int32_t)nunk++
-                        : -1;
-    for (size_t i = 0; i < n; ++i) nwall += M->unk[i] >= 0 && ps->kind[i] != RY_KIND_FLUID;
+    for (size_t i = 0; i < n; ++i) {
+        const int u = (M->role[i] == ROLE_FLUID || M->role[i] == ROLE_WALL) &&
+                      !wall_out(sim, M, i) && !(fold && ry_sim_is_halo(sim, i));
+        M->unk[i] = u ? (int32_t)nunk++ : -1;
+        nwall += u && ps->kind[i] != RY_KIND_FLUID;
+    }
     M->total_unk += (double)nunk;
     M->total_wunk += (double)nwall;
     for (size_t i = 0; fold && i < n; ++i) {
