@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "linalg/small.h"
+
 ry_status ry_colour_init(ry_colour *cf, ry_sim *sim, ry_error *err) {
     RY_TRY(
         ry_particles_add_field(&sim->ps, "colour", "1", -1, RY_FIELD_OUTPUT, &cf->f_colour, err));
@@ -26,11 +28,44 @@ double ry_colour_dt(const ry_colour *cf, const ry_sim *sim) {
     return 0.25 * sqrt(rho * h * h * h / (2.0 * 3.14159265358979323846 * cf->sigma));
 }
 
+/* The contact line's force on particle i (line_force; colour_field.h): its interface normal by the
+ * corrected gradient of c' over the fluid neighbours, the angle it makes with the wall's normal w
+ * (unit, into the fluid; gw = |sum_walls grad_i W_ij|), and Young's unbalanced force along the
+ * wall, spread over the band where the interface and the wall's edge overlap. */
+static void line_force(const ry_colour *cf, const ry_sim *sim, const ry_pair_cache *pc,
+                       const double *cs, const double *delta, const int mobile[RY_KIND_COUNT],
+                       size_t i, const double w[3], double gw, double *acc) {
+    const ry_particles *ps = &sim->ps;
+    const int dim = sim->dim;
+    double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, s[3] = {0, 0, 0}, a[3] = {0, 0, 0};
+    for (size_t q = sim->nl.offset[i]; q < pc->end[i]; ++q) {
+        const uint32_t j = pc->j[q];
+        if (!mobile[ps->kind[j]]) continue;
+        double dx[3];
+        ry_pair_separation(sim, i, j, dx); /* x_i - x_j */
+        const double *G = pc->g + 3 * q, vj = 1.0 / delta[j];
+        for (int b = 0; b < dim; ++b) {
+            s[b] += (cs[j] - cs[i]) * vj * G[b];
+            for (int e = 0; e < dim; ++e) m[b][e] -= vj * G[b] * dx[e];
+        }
+    }
+    if (!ry_solve_small(dim, m, s, a)) return;
+    double la = 0, cd = 0;
+    for (int d = 0; d < dim; ++d) la += a[d] * a[d];
+    if (!(la > 0)) return;
+    la = sqrt(la);
+    for (int d = 0; d < dim; ++d) cd += a[d] / la * w[d];
+    const double f =
+        2.0 * cf->sigma * (cf->cos_theta - cd) * la * gw * cf->wall_volume / cf->rho_bar;
+    for (int d = 0; d < dim; ++d) acc[d] += f * (a[d] / la - cd * w[d]);
+}
+
 /* The contact angle (wet): the unit normals of the interface particles beside a wall turned to
- * meet it at theta (colour_field.h); their sizes kept. Each particle reads its own normal and
- * the walls' pairs only. */
-static void contact_angle(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc,
-                          const int mobile[RY_KIND_COUNT], double thr) {
+ * meet it at theta (colour_field.h), their sizes kept, and the contact line's force
+ * (line_force). Each particle reads its own normal and the walls' pairs only. */
+static void contact_angle(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, const double *cs,
+                          const double *delta, const int mobile[RY_KIND_COUNT], double thr,
+                          double *acc) {
     const ry_particles *ps = &sim->ps;
     const size_t n = ps->n;
     const int dim = sim->dim;
@@ -47,14 +82,14 @@ static void contact_angle(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc,
             near |= ry_pair_separation(sim, i, pc->j[q], dx) < r2max;
             for (int d = 0; d < dim; ++d) w[d] -= pc->g[3 * q + d];
         }
-        if (!near) continue;
+        if (!near && !cf->line_force) continue;
         for (int d = 0; d < dim; ++d) nw += w[d] * w[d];
         if (!(nw > 0)) continue;
         nw = sqrt(nw);
-        for (int d = 0; d < dim; ++d) {
-            w[d] /= nw;
-            dot += nrm[3 * i + d] / ln[i] * w[d];
-        }
+        for (int d = 0; d < dim; ++d) w[d] /= nw;
+        if (cf->line_force) line_force(cf, sim, pc, cs, delta, mobile, i, w, nw, acc + 3 * i);
+        if (!near) continue;
+        for (int d = 0; d < dim; ++d) dot += nrm[3 * i + d] / ln[i] * w[d];
         for (int d = 0; d < dim; ++d) {
             t[d] = nrm[3 * i + d] / ln[i] - dot * w[d];
             nt += t[d] * t[d];
@@ -124,7 +159,7 @@ ry_status ry_colour_force(ry_colour *cf, ry_sim *sim, const ry_pair_cache *pc, c
         const double *ni = nrm + 3 * i;
         ln[i] = sqrt(ni[0] * ni[0] + ni[1] * ni[1] + ni[2] * ni[2]);
     }
-    if (cf->wet) contact_angle(cf, sim, pc, mobile, thr);
+    if (cf->wet) contact_angle(cf, sim, pc, cs, delta, mobile, thr, acc);
     /* Curvature and force. */
     const double sigma = cf->sigma;
 #pragma omp parallel for schedule(dynamic, 64)

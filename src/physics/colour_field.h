@@ -23,7 +23,21 @@
  *               colour (Brackbill et al. 1992, section 2.3): nh = cos(theta) n_w + sin(theta) t,
  *               n_w the wall's normal into the fluid (-sum_walls grad_i W_ij, normalised), t the
  *               normal's part along the wall (normalised); |n| is kept. The curvature, and so
- *               the force, then bends the interface towards the angle. */
+ *               the force, then bends the interface towards the angle.
+ *  contact line (line_force) Young's unbalanced force at the contact line (the contact-line force
+ *               of Huber et al. 2016, J. Comput. Phys. 310:459), per volume
+ *               f_i = sigma (cos theta - cos theta_i) t_i delta_CL,
+ *               cos theta_i = nc_i . n_w the angle the interface makes with the wall at i, nc_i
+ *               = grad c' by the corrected gradient (the moment matrix sum_j V_j grad_i W_ij
+ *               (x_j - x_i) inverted: exact for a linear c' where the wall cuts the kernel), t_i
+ *               = nc_i/|nc_i| - cos theta_i n_w (sin theta_i long: the direction along the wall
+ *               out of the phase without colour), delta_CL = |nc_i| 2 |sum_walls V_w grad_i
+ *               W_ij| sin theta_i: the interface's delta |grad c'| times the wall edge's,
+ *               2 |grad phi_w| (phi_w = sum_walls V_w W_ij falls from 1/2 at the wall's face
+ *               to 0), times sin theta_i, since two bands crossing at theta_i overlap over an
+ *               area 1 / sin theta_i times their widths' product: the force integrates to
+ *               sigma (cos theta - cos theta_i) per length of contact line.
+ *               V_w = 1 / delta_0. Applied with Brackbill's density scaling, as the force. */
 #ifndef RYUSHI_SPH_MULTIPHASE_H
 #define RYUSHI_SPH_MULTIPHASE_H
 
@@ -38,9 +52,11 @@ typedef struct ry_colour {
     int smoothing;  /* passes of the |n|-weighted curvature average (0: none) */
     int wet;        /* a contact angle at the walls (cos_theta, sin_theta) */
     double cos_theta, sin_theta;
-    int f_colour;    /* particle field: smoothed colour c' */
-    int f_curvature; /* particle field: curvature [1/m] */
-    double *nrm;     /* 5 x n: normals (3 x n), then |n| and the curvature average's work */
+    int line_force;     /* the contact line's force (with wet) */
+    double wall_volume; /* a wall particle's volume V_w (1 / the lattice's number density) */
+    int f_colour;       /* particle field: smoothed colour c' */
+    int f_curvature;    /* particle field: curvature [1/m] */
+    double *nrm;        /* 5 x n: normals (3 x n), then |n| and the curvature average's work */
     size_t cap;
 } ry_colour;
 

@@ -66,6 +66,7 @@ case_ mps_thin_wall_layers 2 ":5: key 'scheme.thin_wall_layers': expected an int
 case_ mps_thin_wall_pressure_unknown 2 ":7: key 'scheme.thin_wall_pressure': expected one of unknown, neumann; got 'dirichlet'"
 case_ mps_wall_pressure_without_extrapolation 2 ":8: key 'scheme.wall_extrapolation': false leaves the walls without a pressure with scheme.wall_pressure: neumann (their pressure is the extrapolated one)"
 case_ mps_contact_line_slip_not_bool 2 ":7: key 'scheme.contact_line_slip': expected true or false, got 'sometimes'"
+case_ iisph_line_force_without_angle 2 ":8: key 'scheme.contact_line_force': needs scheme.contact_angle"
 case_ inlet_flow_rate_and_velocity 2 ":8: key 'open_boundaries[0].flow_rate': an open boundary takes 'velocity' or 'flow_rate' with 'direction', not both"
 case_ outlet_pressure_and_flow_rate 2 ":8: key 'open_boundaries[0].pressure': an outlet takes 'pressure', or 'flow_rate' or 'velocity' (a rate outlet), not both"
 case_ wcsph_rate_outlet 2 ":7: key 'open_boundaries[0].type': scheme wcsph takes no rate outlets (flow_rate or velocity); use an outlet at a pressure, or scheme iisph"

@@ -122,6 +122,12 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         RY_TRY(ry_case_int(c, "scheme.curvature_smoothing", &one, 0, 20, &passes, err));
         s->colour.smoothing = (int)passes;
     }
+    if (ry_case_has(c, "scheme.contact_line_force") && !ry_case_has(c, "scheme.contact_angle")) {
+        char where[256];
+        RY_CHECK(err, 0, RY_ERR_INPUT,
+                 "%s: key 'scheme.contact_line_force': needs scheme.contact_angle",
+                 ry_case_where(c, "scheme.contact_line_force", where, sizeof where));
+    }
     if (ry_case_has(c, "scheme.contact_angle")) {
         /* the two liquids' angle at the walls, through the liquid without colour */
         double theta;
@@ -133,6 +139,9 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
         s->colour.wet = 1;
         s->colour.cos_theta = cos(theta * 3.14159265358979323846 / 180.0);
         s->colour.sin_theta = sin(theta * 3.14159265358979323846 / 180.0);
+        int no = 0, lf;
+        RY_TRY(ry_case_bool(c, "scheme.contact_line_force", &no, &lf, err));
+        s->colour.line_force = lf;
     }
     if (s->colour_on) {
         const int a = s->colour.material, b = a == 0 && sim->nmat > 1 ? 1 : 0;
@@ -144,6 +153,7 @@ static ry_status iisph_init(ry_sim *sim, ry_case *c, void **state, ry_error *err
     RY_CHECK(err, s->mu != NULL, RY_ERR_NOMEM, "out of memory");
     for (int m = 0; m < sim->nmat; ++m) s->mu[m] = sim->mat[m].density * sim->mat[m].viscosity;
     s->delta0 = ry_lattice_number_density(&sim->kernel, sim->dim, sim->dx);
+    s->colour.wall_volume = 1.0 / s->delta0;
     /* The lattice's value of the viscous term for a unit shear Laplacian (Wendland C2,
      * h = 1.4 dx: projected 0.85 in 2D, 0.90 in 3D; Morris 0.98). */
     const double eta2 = ry_morris_eta2(sim->kernel.h);
