@@ -204,6 +204,9 @@ typedef struct ry_tamponade {
 } ry_tamponade;
 ry_status ry_tamponade_solve(double fill, double theta, double bond, ry_tamponade *out,
                              ry_error *err);
+/* The meridian of t's interface (bond: its Bond number) from the apex to the wall: at most cap
+ * points (r, z), in units of R, the last on the wall; returns their number (0 when cap < 2). */
+size_t ry_tamponade_profile(const ry_tamponade *t, double bond, size_t cap, double *r, double *z);
 /* The share of a region of the wall that the lighter liquid of t covers: the cone of half angle
  * half_angle [rad] about the unit direction d, in the frame where the unit vector up points
  * against gravity (the lighter liquid covers the wall above the contact line, p.up >=

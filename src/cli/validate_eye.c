@@ -13,6 +13,7 @@
 #include "ryushi/plot.h"
 #include "ryushi/probes.h"
 #include "ryushi/run.h"
+#include "ryushi/ryushi.h" /* ry_sim_probe: the whole problem of a symmetric part */
 #include "ryushi/validate.h"
 
 /* A check of a figure against its bound, both recorded. */
@@ -215,19 +216,77 @@ static double eye_equilibrium(const char *root, const char *out, int *failures) 
     return bond;
 }
 
-/* The oil and saline at rest (cases/eye_rest.yaml, upright, 1.5 mm, 3 s; the full version
- * also the fill of 0.9): the retina covered at the end against the Young-Laplace equilibrium of
- * the run's own fill (its lattice's filled fraction) at the contact angle of 18 degrees, and
- * each region's (bond: the equilibrium's Bond number, eye_equilibrium's). Check: within `tol`
- * (absolute). */
-static void eye_rest(const char *root, const char *out, int quick, double bond, double tol,
+/* Panel `panel` of the oil at rest: the particles of the layer next to the plane z = 0 on its
+ * side z > 0 with x >= 0 (a quarter's own, mirrored to x < 0) as markers, and the equilibrium's
+ * interface t (R the cavity's radius) as a line, in mm. */
+static void rest_panel(ry_plot *p, int panel, const ry_sim *sim, const ry_tamponade *t, double bond,
+                       double R, const char *title) {
+    ry_error err;
+    const ry_particles *ps = &sim->ps;
+    ry_plot_panel(p, panel, title, "x [mm]", "y [mm] (up)", &err);
+    double *x = malloc(2 * ps->n * sizeof *x), *y = malloc(2 * ps->n * sizeof *y);
+    const char *const label[3] = {"wall", "saline", "silicone oil"};
+    const int color[3] = {7, 0, 1};
+    for (int set = 0; x && y && set < 3; ++set) {
+        size_t m = 0;
+        for (size_t i = 0; i < ps->n; ++i) {
+            const double zi = ps->f[RY_F_Z][i];
+            if (zi < 0 || zi > sim->dx || ps->f[RY_F_X][i] < 0) continue;
+            const int k = ps->kind[i];
+            const int which =
+                k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
+            if (which != set) continue;
+            for (int side = -1; side <= 1; side += 2) {
+                x[m] = side * 1e3 * ps->f[RY_F_X][i];
+                y[m++] = 1e3 * ps->f[RY_F_Y][i];
+            }
+        }
+        if (m == 0) continue;
+        ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
+        st.color = color[set];
+        st.marker_size = 4;
+        ry_plot_series(p, panel, label[set], m, x, y, st, &err);
+    }
+    enum { NP = 400 };
+    double r[NP], z[NP], xs[2 * NP], ys[2 * NP];
+    const size_t n = ry_tamponade_profile(t, bond, NP, r, z);
+    for (size_t i = 0; i < n; ++i) { /* from one contact point through the apex to the other */
+        xs[i] = -1e3 * R * r[n - 1 - i];
+        ys[i] = 1e3 * R * z[n - 1 - i];
+        xs[n + i] = 1e3 * R * r[i];
+        ys[n + i] = 1e3 * R * z[i];
+    }
+    ry_plot_style line = ry_plot_style_line();
+    line.color = 3;
+    if (n) ry_plot_series(p, panel, "Young-Laplace, 18 degrees", 2 * n, xs, ys, line, &err);
+    free(x);
+    free(y);
+    ry_plot_xrange(p, panel, -15, 15, &err);
+    ry_plot_yrange(p, panel, -15, 15, &err);
+    ry_plot_legend(p, panel, panel == 0 ? RY_PLOT_LEGEND_SW : RY_PLOT_LEGEND_NONE, &err);
+}
+
+/* The oil and saline at rest (cases/eye_rest.yaml: upright, the quarter of the cavity at the
+ * case's spacing, 1 s; the full version the fills of 0.6, 0.8 and 0.9, the short one 0.8): the
+ * retina covered at the end against the Young-Laplace equilibrium of the run's own fill (its
+ * lattice's filled fraction) at the contact angle of 18 degrees, each region's, and the
+ * interface's height on the axis (bond: the equilibrium's Bond number, eye_equilibrium's).
+ * Checks: the coverage within tol[0] (absolute), the height within tol[1] spacings. */
+static void eye_rest(const char *root, const char *out, int quick, double bond, const double *tol,
                      int *failures) {
     ry_error err = {0};
-    const double offsets[2] = {-0.005109, -0.007301}, nominal[2] = {0.8, 0.9};
+    const double offsets[3] = {-0.005109, -0.00161, -0.007301}, nominal[3] = {0.8, 0.6, 0.9};
     const double theta = 18.0 * 3.14159265358979323846 / 180.0, up[3] = {0, 1, 0};
     printf("Eye at rest (cases/eye_rest.yaml, upright, from a flat interface) against the "
            "equilibrium at 18 degrees:\n");
-    for (int k = 0; k < (quick ? 1 : 2); ++k) {
+    const int nfill = quick ? 1 : 3;
+    ry_plot *p = NULL;
+    if (ry_plot_new(&p, 1, nfill, 640 * nfill, 600, &err) != RY_OK) {
+        ry_cli_fail(failures, &err);
+        return;
+    }
+    ry_plot_title(p, "The oil at rest against Young-Laplace", &err);
+    for (int k = 0; k < nfill; ++k) {
         char cpath[4096], odir[4096], off[64], sub[64];
         snprintf(cpath, sizeof cpath, "%s/cases/eye_rest.yaml", root);
         snprintf(sub, sizeof sub, "eye_rest_%.1f", nominal[k]);
@@ -240,52 +299,64 @@ static void eye_rest(const char *root, const char *out, int quick, double bond, 
             ry_cli_fail(failures, &err);
             continue;
         }
-        size_t nf = 0, noil = 0;
-        for (size_t i = 0; i < sim.ps.n; ++i)
-            if (sim.ps.kind[i] == RY_KIND_FLUID) {
-                ++nf;
-                noil += sim.ps.material[i] == 1;
-            }
-        const double fill = nf ? (double)noil / (double)nf : NAN;
+        /* the whole cavity's measurements (a symmetric part's copies are not the whole) */
+        double fill = NAN, covered = NAN, height = NAN, R = NAN;
+        ry_sim_probe(&sim, "filled_fraction", &fill);
+        ry_sim_probe(&sim, "oil_wall_contact", &covered);
+        ry_sim_probe(&sim, "interface_height", &height);
+        ry_case *c = NULL;
+        if (ry_case_load(&c, cpath, &err) == RY_OK)
+            ry_case_double(c, "bodies[0].radius", NULL, 0, INFINITY, &R, &err);
+        ry_case_free(c);
         ry_tamponade t;
-        double covered = NAN;
-        for (const ry_probe *const *q = ry_probes(); *q; ++q)
-            if (strcmp((*q)->name, "oil_wall_contact") == 0)
-                ry_probe_eval(*q, &sim, &covered, &err);
-        if (ry_tamponade_solve(fill, theta, bond, &t, &err) != RY_OK) {
+        if (ry_tamponade_solve(fill, theta, bond, &t, &err) != RY_OK || !isfinite(R)) {
             ry_sim_free(&sim);
             ry_cli_fail(failures, &err);
             continue;
         }
-        printf("  fill %.3f (nominal %.1f), %zu particles, %ld steps, %.0f s: retina covered "
-               "%.3f, reference %.3f\n",
-               fill, nominal[k], sim.ps.n, stats.steps, stats.wall_s, covered, t.coverage);
+        printf("  fill %.3f (nominal %.1f), %.2f mm, %zu particles with the copies, %ld steps, "
+               "%.0f s: "
+               "retina covered %.3f, reference %.3f; interface on the axis %+.2f mm, reference "
+               "%+.2f mm\n",
+               fill, nominal[k], 1e3 * sim.dx, sim.ps.n, stats.steps, stats.wall_s, covered,
+               t.coverage, 1e3 * height, 1e3 * R * t.z_apex);
         for (int r = 0; r < sim.nregions; ++r) {
             double v = NAN;
-            ry_probe_eval(&sim.regions[r].probe, &sim, &v, &err);
+            ry_sim_probe(&sim, sim.regions[r].probe.name, &v);
             printf("    %-16s %.3f, reference %.3f\n", sim.regions[r].name, v,
                    ry_tamponade_region_coverage(&t, up, sim.regions[r].dir,
                                                 acos(sim.regions[r].cos_half)));
         }
         char what[160];
+        snprintf(what, sizeof what, "fill %.3f, %.2f mm, t = %.1f s", fill, 1e3 * sim.dx, sim.t);
+        rest_panel(p, k, &sim, &t, bond, R, what);
         snprintf(what, sizeof what,
-                 "eye at rest, fill %.1f, 1.5 mm: retina covered within %g of the equilibrium",
-                 nominal[k], tol);
-        ry_cli_check_figure(what, fabs(covered - t.coverage), tol,
-                            fabs(covered - t.coverage) <= tol, failures);
+                 "eye at rest, fill %.1f, %.2f mm: retina covered within %g of the equilibrium",
+                 nominal[k], 1e3 * sim.dx, tol[0]);
+        ry_cli_check_figure(what, fabs(covered - t.coverage), tol[0],
+                            fabs(covered - t.coverage) <= tol[0], failures);
+        const double dh = fabs(height - R * t.z_apex) / sim.dx;
+        snprintf(what, sizeof what,
+                 "eye at rest, fill %.1f, %.2f mm: interface on the axis within %g spacing(s)",
+                 nominal[k], 1e3 * sim.dx, tol[1]);
+        ry_cli_check_figure(what, dh, tol[1], dh <= tol[1], failures);
         ry_sim_free(&sim);
     }
+    char png[4096];
+    snprintf(png, sizeof png, "%s/eye_rest.png", out);
+    if (ry_plot_write_png(p, png, &err) != RY_OK) ry_cli_fail(failures, &err);
+    ry_plot_free(p);
 }
 
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures) {
     /* the tolerances of validation/eye.yaml */
-    enum { KEPT, FILLED, CONTACT, REST, NTOL };
+    enum { KEPT, FILLED, CONTACT, REST, HEIGHT, NTOL };
     static const char *const keys[NTOL] = {"oil_kept", "filled_fraction_dt", "contact_dt",
-                                           "coverage_at_rest"};
+                                           "coverage_at_rest", "interface_height_spacings"};
     double tol[NTOL];
     if (ry_cli_tolerances(root, "eye", NTOL, keys, tol, failures)) return 1;
     const double bond = eye_equilibrium(root, out, failures);
-    if (isfinite(bond)) eye_rest(root, out, quick, bond, tol[REST], failures);
+    if (isfinite(bond)) eye_rest(root, out, quick, bond, tol + REST, failures);
     ry_error err = {0};
     const double tq[2] = {0.05, 0.1}, tf[3] = {0.3, 0.6, 1.0};
     const double *times = quick ? tq : tf;

@@ -8,6 +8,8 @@
 extern const ry_probe ry_probe_width_x, ry_probe_drop_pressure, ry_probe_ppe_iterations,
     ry_probe_contact_angle, ry_probe_contact_angle_second, ry_probe_width_x_second,
     ry_probe_pressure_jump_second;
+/* src/measure/probes_interface.c */
+extern const ry_probe ry_probe_interface_height;
 /* src/measure/probes_solid.c */
 extern const ry_probe ry_probe_tip_deflection, ry_probe_tip_axial, ry_probe_residual,
     ry_probe_solid_kinetic_energy, ry_probe_strain_energy, ry_probe_min_spacing;

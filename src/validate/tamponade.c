@@ -52,14 +52,32 @@ static state rk4(const state *y, double h, double k0, double bond, double z0) {
     return o;
 }
 
+/* The points of a profile kept while shooting (ry_tamponade_profile): every stride-th step's,
+ * up to cap, and the wall's; steps counts the steps taken. */
+typedef struct trace {
+    double *r, *z;
+    size_t cap, n, stride, steps;
+} trace;
+
+static void keep(trace *tr, const state *y, int last) {
+    if (!tr) return;
+    if ((last || tr->steps % tr->stride == 0) && tr->n < tr->cap) {
+        tr->r[tr->n] = y->r;
+        tr->z[tr->n++] = y->z;
+    }
+    tr->steps += !last;
+}
+
 /* The profile of apex curvature k0 from the apex at z0 to the wall: the contact point, angle and
  * the oil's volume fraction; 1 when it reaches the wall, otherwise +2 when it turned back
- * upwards before (bent too much) and -2 when it turned back downwards. */
-static int shoot(double k0, double z0, double bond, ry_tamponade *out) {
+ * upwards before (bent too much) and -2 when it turned back downwards. tr (or NULL) keeps its
+ * points. */
+static int shoot(double k0, double z0, double bond, ry_tamponade *out, trace *tr) {
     /* start off the axis by the series r = s, z = z0 + k0 s^2 / 4, phi = k0 s / 2 */
     const double s0 = 1e-6;
     state y = {s0, z0 + 0.25 * k0 * s0 * s0, 0.5 * k0 * s0, 0.0};
     for (int it = 0; it < MAX_STEPS; ++it) {
+        keep(tr, &y, 0);
         state n = rk4(&y, DS, k0, bond, z0);
         if (n.r * n.r + n.z * n.z >= 1.0) {
             /* the step crosses the wall: bisect it until the crossing is found to 1e-15 */
@@ -73,6 +91,7 @@ static int shoot(double k0, double z0, double bond, ry_tamponade *out) {
                     lo = mid;
             }
             n = rk4(&y, hi, k0, bond, z0);
+            keep(tr, &n, 1);
             const double zc = n.z;
             const double cap = PI * (1 - zc) * (1 - zc) * (2 + zc) / 3;
             out->z_contact = zc;
@@ -96,7 +115,7 @@ static int shoot(double k0, double z0, double bond, ry_tamponade *out) {
  * wall (0 for those that bend up too much, pi for those that bend down), so that it falls with
  * k0. */
 static double angle_of(double k0, double z0, double bond, ry_tamponade *t) {
-    const int r = shoot(k0, z0, bond, t);
+    const int r = shoot(k0, z0, bond, t, NULL);
     return r == 1 ? t->theta : r > 0 ? 0.0 : PI;
 }
 
@@ -112,7 +131,7 @@ static int at_apex(double z0, double theta, double bond, ry_tamponade *out) {
         else
             hi = mid;
     }
-    return shoot(lo, z0, bond, out) == 1;
+    return shoot(lo, z0, bond, out, NULL) == 1;
 }
 
 ry_status ry_tamponade_solve(double fill, double theta, double bond, ry_tamponade *out,
@@ -151,6 +170,17 @@ ry_status ry_tamponade_solve(double fill, double theta, double bond, ry_tamponad
              bond, t.theta * 180 / PI, theta * 180 / PI);
     *out = t;
     return RY_OK;
+}
+
+size_t ry_tamponade_profile(const ry_tamponade *t, double bond, size_t cap, double *r, double *z) {
+    ry_tamponade u;
+    trace tr = {r, z, 0, 0, 1, 0};
+    if (cap < 2 || shoot(t->k0, t->z_apex, bond, &u, &tr) != 1) return 0;
+    tr.stride = tr.steps / (cap - 1) + 1;
+    tr.cap = cap;
+    tr.steps = 0;
+    shoot(t->k0, t->z_apex, bond, &u, &tr);
+    return tr.n;
 }
 
 /* A cone of the wall about the unit direction d (half angle h) in the frame where `up` (unit)

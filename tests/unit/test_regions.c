@@ -1,7 +1,9 @@
 /* The retina regions (case section `retina_regions`) and their coverage columns: a cavity of
  * radius 6 mm inside a wall shell, its upper half (y > 0) oil, the lower saline; a cone about
  * +y is all oil, one about -y none, one about +x or -x half; the columns follow the case's
- * measurements in series.csv's order; bad sections are refused with the key named. */
+ * measurements in series.csv's order; bad sections are refused with the key named. The probe
+ * interface_height finds the level between the two liquids on the vertical through the origin,
+ * whichever way gravity points, and leaves a stray particle of either liquid out. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -82,6 +84,44 @@ static void test_coverage(void **state) {
     ry_case_free(c);
 }
 
+/* The liquids split at y = level (oil above, against gravity -y), a few particles out of place. */
+static void test_interface_height(void **state) {
+    (void)state;
+    ry_sim sim;
+    ry_case *c = NULL;
+    ry_error err = {0};
+    assert_int_equal(setup(&sim, &c, "gravity: [0, -9.81, 0]\n", &err), RY_OK);
+    const ry_probe *p = NULL;
+    for (const ry_probe *const *q = ry_probes(); *q; ++q)
+        if (strcmp((*q)->name, "interface_height") == 0) p = *q;
+    assert_non_null(p);
+    double v = 0;
+    assert_int_equal(ry_probe_eval(p, &sim, &v, &err), RY_OK);
+    assert_true(isnan(v)); /* one liquid alone */
+    /* the lattice's layers lie at y = (k + 1/2) mm: the level -2 mm lies between two */
+    size_t stray_oil = 0, stray_saline = 0;
+    for (size_t i = 0; i < sim.ps.n; ++i) {
+        if (sim.ps.kind[i] != RY_KIND_FLUID) continue;
+        const double x = sim.ps.f[RY_F_X][i], y = sim.ps.f[RY_F_Y][i], z = sim.ps.f[RY_F_Z][i];
+        const int axis = x * x + z * z < 1e-6;
+        sim.ps.material[i] = y > -2.0e-3;
+        if (axis && y < -4.0e-3 && !stray_oil++) sim.ps.material[i] = 1;
+        if (axis && y > 2.0e-3 && !stray_saline++) sim.ps.material[i] = 0;
+    }
+    assert_int_equal(stray_oil, 8); /* the four columns about the axis, y = -4.5 and -5.5 mm */
+    assert_int_equal(ry_probe_eval(p, &sim, &v, &err), RY_OK);
+    assert_float_equal(v, -2.0e-3, 1e-12);
+    /* gravity along +x: heights along -x, the level at x = 1 mm */
+    sim.gravity[0] = 9.81;
+    sim.gravity[1] = 0;
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.kind[i] == RY_KIND_FLUID) sim.ps.material[i] = sim.ps.f[RY_F_X][i] < 1.0e-3;
+    assert_int_equal(ry_probe_eval(p, &sim, &v, &err), RY_OK);
+    assert_float_equal(v, -1.0e-3, 1e-12);
+    ry_sim_free(&sim);
+    ry_case_free(c);
+}
+
 static void refused(const char *regions, const char *needle) {
     ry_sim sim;
     ry_case *c = NULL;
@@ -111,6 +151,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coverage),
         cmocka_unit_test(test_bad_sections),
+        cmocka_unit_test(test_interface_height),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

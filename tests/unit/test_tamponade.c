@@ -66,7 +66,20 @@ static void test_zero_bond_lens(void **state) {
         assert_true(fabs(lens / (4 * PI / 3) - fills[k]) < 1e-7);
         assert_true(fabs(acos((1 - c * zc) / rho) - theta) < 1e-7);
         assert_true(t.coverage < flat_x(fills[k])); /* the oil beads up: less than the plane */
+        /* its meridian (ry_tamponade_profile): on that sphere, from the apex to the wall */
+        double r[200], z[200];
+        const size_t n = ry_tamponade_profile(&t, 0.0, 200, r, z);
+        assert_true(n >= 100 && n <= 200);
+        for (size_t i = 0; i < n; ++i) assert_true(fabs(hypot(r[i], z[i] - c) - rho) < 1e-7);
+        assert_true(fabs(r[0]) < 1e-5 && fabs(z[0] - t.z_apex) < 1e-9);
+        assert_true(fabs(z[n - 1] - t.z_contact) < 1e-12 && fabs(r[n - 1] - t.r_contact) < 1e-12);
     }
+    ry_tamponade t;
+    ry_error err = {0};
+    double r[2], z[2];
+    assert_int_equal(ry_tamponade_solve(0.8, theta, 1.0, &t, &err), RY_OK);
+    assert_int_equal(ry_tamponade_profile(&t, 1.0, 1, r, z), 0);
+    assert_int_equal(ry_tamponade_profile(&t, 1.0, 2, r, z), 2);
 }
 
 static void test_large_bond_flattens(void **state) {
