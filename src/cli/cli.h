@@ -72,6 +72,17 @@ double *ry_cli_scaled_column(const ry_table *s, const char *name, double k);
  * mm: walls, the first and the second material, labelled label[0..2] when legend is set. */
 void ry_cli_slice_markers(ry_plot *p, int panel, const ry_sim *sim, double half,
                           const char *const label[3], int legend);
+/* A slice of a 3D run: the particles with lo <= x[normal] <= hi, drawn at (x[ax], x[ay]) in mm;
+ * with mirror, those with x[ax] >= 0 only, each also at (-x[ax], x[ay]) (a symmetric part). */
+typedef struct ry_cli_slice {
+    int normal;
+    double lo, hi;
+    int ax, ay, mirror;
+    double marker_size;
+} ry_cli_slice;
+/* ry_cli_slice_markers for any slice. */
+void ry_cli_slice_markers_in(ry_plot *p, int panel, const ry_sim *sim, const ry_cli_slice *sl,
+                             const char *const label[3], int legend);
 /* The 2D embolization tank: droplet, volumes, Tate's law (validate_embolization.c). */
 int ry_cli_validate_embolization(const char *root, const char *out, int quick, int *failures);
 /* The coarse 3D embolization tank until its droplet detaches, resumable

@@ -25,31 +25,41 @@ ry_status ry_cli_add_series(ry_plot *p, int panel, const char *label, const ry_t
     return st;
 }
 
-void ry_cli_slice_markers(ry_plot *p, int panel, const ry_sim *sim, double half,
-                          const char *const label[3], int legend) {
+void ry_cli_slice_markers_in(ry_plot *p, int panel, const ry_sim *sim, const ry_cli_slice *sl,
+                             const char *const label[3], int legend) {
     ry_error err;
     const ry_particles *ps = &sim->ps;
-    double *x = malloc(ps->n * sizeof *x), *z = malloc(ps->n * sizeof *z);
+    const int sides = sl->mirror ? 2 : 1;
+    double *x = malloc(sides * ps->n * sizeof *x), *z = malloc(sides * ps->n * sizeof *z);
     const int color[3] = {7, 0, 1};
     for (int set = 0; x && z && set < 3; ++set) {
         size_t m = 0;
         for (size_t i = 0; i < ps->n; ++i) {
-            if (fabs(ps->f[RY_F_Y][i]) > half) continue;
+            const double c = ps->f[RY_F_X + sl->normal][i], h = ps->f[RY_F_X + sl->ax][i];
+            if (c < sl->lo || c > sl->hi || (sl->mirror && h < 0)) continue;
             const int k = ps->kind[i];
             const int which =
                 k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
             if (which != set) continue;
-            x[m] = 1e3 * ps->f[RY_F_X][i];
-            z[m++] = 1e3 * ps->f[RY_F_Z][i];
+            for (int side = 0; side < sides; ++side) {
+                x[m] = (side ? -1e3 : 1e3) * h;
+                z[m++] = 1e3 * ps->f[RY_F_X + sl->ay][i];
+            }
         }
         if (m == 0) continue;
         ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
         st.color = color[set];
-        st.marker_size = 6;
+        st.marker_size = sl->marker_size;
         ry_plot_series(p, panel, legend ? label[set] : NULL, m, x, z, st, &err);
     }
     free(x);
     free(z);
+}
+
+void ry_cli_slice_markers(ry_plot *p, int panel, const ry_sim *sim, double half,
+                          const char *const label[3], int legend) {
+    const ry_cli_slice sl = {1, -half, half, 0, 2, 0, 6};
+    ry_cli_slice_markers_in(p, panel, sim, &sl, label, legend);
 }
 
 double *ry_cli_scaled_column(const ry_table *s, const char *name, double k) {

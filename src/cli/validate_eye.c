@@ -120,8 +120,9 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
  * the oil-saline tension of the case), the contact angle through the saline 18 degrees (Fawcett,
  * Williams & Wong 1994); the retina's covered share at fills 0.5 to 0.95, and that of each of
  * the case's retina regions in each head position at fills 0.8 and 0.9. A table on stdout and
- * in eye_equilibrium.md; no check (the reference of the simulations at rest). */
-static double eye_equilibrium(const char *root, const char *out, int *failures) {
+ * in eye_equilibrium.md; no check (the reference of the simulations at rest). *R:
+ * the cavity's radius [m]. */
+static double eye_equilibrium(const char *root, const char *out, double *R, int *failures) {
     ry_error err = {0};
     char path[4096];
     snprintf(path, sizeof path, "%s/cases/eye_sphere.yaml", root);
@@ -130,10 +131,10 @@ static double eye_equilibrium(const char *root, const char *out, int *failures) 
     memset(&s, 0, sizeof s);
     s.dim = 3;
     s.nmat = 2;
-    double R, rho_s, rho_o, sigma;
+    double rho_s, rho_o, sigma;
     const double theta = 18.0 * 3.14159265358979323846 / 180.0, g = 9.81;
     if (ry_case_load(&c, path, &err) != RY_OK ||
-        ry_case_double(c, "bodies[0].radius", NULL, 0, INFINITY, &R, &err) != RY_OK ||
+        ry_case_double(c, "bodies[0].radius", NULL, 0, INFINITY, R, &err) != RY_OK ||
         ry_case_double(c, "materials[0].density", NULL, 0, INFINITY, &rho_s, &err) != RY_OK ||
         ry_case_double(c, "materials[1].density", NULL, 0, INFINITY, &rho_o, &err) != RY_OK ||
         ry_case_double(c, "scheme.surface_tension", NULL, 0, INFINITY, &sigma, &err) != RY_OK ||
@@ -144,13 +145,13 @@ static double eye_equilibrium(const char *root, const char *out, int *failures) 
         return NAN;
     }
     ry_case_free(c);
-    const double bond = (rho_s - rho_o) * g * R * R / sigma;
+    const double bond = (rho_s - rho_o) * g * *R * *R / sigma;
     char mdp[4096];
     snprintf(mdp, sizeof mdp, "%s/eye_equilibrium.md", out);
     FILE *md = fopen(mdp, "w");
     printf("Eye at equilibrium (Young-Laplace, cases/eye_sphere.yaml): R = %g mm, densities %g "
            "and %g kg/m^3, tension %g N/m, Bond number %.3f, contact angle 18 degrees\n",
-           1e3 * R, rho_s, rho_o, sigma, bond);
+           1e3 * *R, rho_s, rho_o, sigma, bond);
     printf("  %-6s %10s %12s %12s %12s\n", "fill", "coverage", "flat limit", "apex [mm]",
            "contact [mm]");
     if (md)
@@ -173,10 +174,10 @@ static double eye_equilibrium(const char *root, const char *out, int *failures) 
                 hi = x;
         }
         printf("  %-6.2f %9.1f%% %11.1f%% %12.2f %12.2f\n", fills[k], 100 * t.coverage, 100 * lo,
-               1e3 * R * t.z_apex, 1e3 * R * t.z_contact);
+               1e3 * *R * t.z_apex, 1e3 * *R * t.z_contact);
         if (md)
             fprintf(md, "| %.2f | %.1f %% | %.1f %% | %+.2f | %+.2f |\n", fills[k],
-                    100 * t.coverage, 100 * lo, 1e3 * R * t.z_apex, 1e3 * R * t.z_contact);
+                    100 * t.coverage, 100 * lo, 1e3 * *R * t.z_apex, 1e3 * *R * t.z_contact);
     }
     if (md) {
         fprintf(md, "\n| fill | position |");
@@ -222,31 +223,10 @@ static double eye_equilibrium(const char *root, const char *out, int *failures) 
 static void rest_panel(ry_plot *p, int panel, const ry_sim *sim, const ry_tamponade *t, double bond,
                        double R, const char *title) {
     ry_error err;
-    const ry_particles *ps = &sim->ps;
     ry_plot_panel(p, panel, title, "x [mm]", "y [mm] (up)", &err);
-    double *x = malloc(2 * ps->n * sizeof *x), *y = malloc(2 * ps->n * sizeof *y);
     const char *const label[3] = {"wall", "saline", "silicone oil"};
-    const int color[3] = {7, 0, 1};
-    for (int set = 0; x && y && set < 3; ++set) {
-        size_t m = 0;
-        for (size_t i = 0; i < ps->n; ++i) {
-            const double zi = ps->f[RY_F_Z][i];
-            if (zi < 0 || zi > sim->dx || ps->f[RY_F_X][i] < 0) continue;
-            const int k = ps->kind[i];
-            const int which =
-                k == RY_KIND_WALL ? 0 : (k == RY_KIND_FLUID ? 1 + (ps->material[i] == 1) : -1);
-            if (which != set) continue;
-            for (int side = -1; side <= 1; side += 2) {
-                x[m] = side * 1e3 * ps->f[RY_F_X][i];
-                y[m++] = 1e3 * ps->f[RY_F_Y][i];
-            }
-        }
-        if (m == 0) continue;
-        ry_plot_style st = ry_plot_style_markers(RY_PLOT_MARKER_CIRCLE);
-        st.color = color[set];
-        st.marker_size = 4;
-        ry_plot_series(p, panel, label[set], m, x, y, st, &err);
-    }
+    const ry_cli_slice sl = {2, 0.0, sim->dx, 0, 1, 1, 4};
+    ry_cli_slice_markers_in(p, panel, sim, &sl, label, 1);
     enum { NP = 400 };
     double r[NP], z[NP], xs[2 * NP], ys[2 * NP];
     const size_t n = ry_tamponade_profile(t, bond, NP, r, z);
@@ -259,8 +239,6 @@ static void rest_panel(ry_plot *p, int panel, const ry_sim *sim, const ry_tampon
     ry_plot_style line = ry_plot_style_line();
     line.color = 3;
     if (n) ry_plot_series(p, panel, "Young-Laplace, 18 degrees", 2 * n, xs, ys, line, &err);
-    free(x);
-    free(y);
     ry_plot_xrange(p, panel, -15, 15, &err);
     ry_plot_yrange(p, panel, -15, 15, &err);
     ry_plot_legend(p, panel, panel == 0 ? RY_PLOT_LEGEND_SW : RY_PLOT_LEGEND_NONE, &err);
@@ -270,10 +248,11 @@ static void rest_panel(ry_plot *p, int panel, const ry_sim *sim, const ry_tampon
  * case's spacing, 1 s; the full version the fills of 0.6, 0.8 and 0.9, the short one 0.8): the
  * retina covered at the end against the Young-Laplace equilibrium of the run's own fill (its
  * lattice's filled fraction) at the contact angle of 18 degrees, each region's, and the
- * interface's height on the axis (bond: the equilibrium's Bond number, eye_equilibrium's).
+ * interface's height on the axis (bond and R: the equilibrium's Bond number and radius,
+ * eye_equilibrium's).
  * Checks: the coverage within tol[0] (absolute), the height within tol[1] spacings. */
-static void eye_rest(const char *root, const char *out, int quick, double bond, const double *tol,
-                     int *failures) {
+static void eye_rest(const char *root, const char *out, int quick, double bond, double R,
+                     const double *tol, int *failures) {
     ry_error err = {0};
     const double offsets[3] = {-0.005109, -0.00161, -0.007301}, nominal[3] = {0.8, 0.6, 0.9};
     const double theta = 18.0 * 3.14159265358979323846 / 180.0, up[3] = {0, 1, 0};
@@ -300,24 +279,19 @@ static void eye_rest(const char *root, const char *out, int quick, double bond, 
             continue;
         }
         /* the whole cavity's measurements (a symmetric part's copies are not the whole) */
-        double fill = NAN, covered = NAN, height = NAN, R = NAN;
+        double fill = NAN, covered = NAN, height = NAN;
         ry_sim_probe(&sim, "filled_fraction", &fill);
         ry_sim_probe(&sim, "oil_wall_contact", &covered);
         ry_sim_probe(&sim, "interface_height", &height);
-        ry_case *c = NULL;
-        if (ry_case_load(&c, cpath, &err) == RY_OK)
-            ry_case_double(c, "bodies[0].radius", NULL, 0, INFINITY, &R, &err);
-        ry_case_free(c);
         ry_tamponade t;
-        if (ry_tamponade_solve(fill, theta, bond, &t, &err) != RY_OK || !isfinite(R)) {
+        if (ry_tamponade_solve(fill, theta, bond, &t, &err) != RY_OK) {
             ry_sim_free(&sim);
             ry_cli_fail(failures, &err);
             continue;
         }
         printf("  fill %.3f (nominal %.1f), %.2f mm, %zu particles with the copies, %ld steps, "
-               "%.0f s: "
-               "retina covered %.3f, reference %.3f; interface on the axis %+.2f mm, reference "
-               "%+.2f mm\n",
+               "%.0f s: retina covered %.3f, reference %.3f; interface on the axis %+.2f mm, "
+               "reference %+.2f mm\n",
                fill, nominal[k], 1e3 * sim.dx, sim.ps.n, stats.steps, stats.wall_s, covered,
                t.coverage, 1e3 * height, 1e3 * R * t.z_apex);
         for (int r = 0; r < sim.nregions; ++r) {
@@ -355,8 +329,9 @@ int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failu
                                            "coverage_at_rest", "interface_height_spacings"};
     double tol[NTOL];
     if (ry_cli_tolerances(root, "eye", NTOL, keys, tol, failures)) return 1;
-    const double bond = eye_equilibrium(root, out, failures);
-    if (isfinite(bond)) eye_rest(root, out, quick, bond, tol + REST, failures);
+    double R = NAN;
+    const double bond = eye_equilibrium(root, out, &R, failures);
+    if (isfinite(bond)) eye_rest(root, out, quick, bond, R, tol + REST, failures);
     ry_error err = {0};
     const double tq[2] = {0.05, 0.1}, tf[3] = {0.3, 0.6, 1.0};
     const double *times = quick ? tq : tf;
