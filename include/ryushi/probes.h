@@ -15,6 +15,14 @@ const ry_probe *const *ry_probes(void);
 /* A probe's value (eval, or eval_item with its item). */
 ry_status ry_probe_eval(const ry_probe *p, const ry_sim *sim, double *value, ry_error *err);
 
+/* The share of the wetted wall (as the probe oil_wall_contact counts it: the wall particles
+ * with a fluid particle within the kernel support, the ports' channels and collars left out;
+ * with reg, only those in its cone) whose direction from centre makes an angle with up of
+ * cosine cos_min or more: the wall a lighter liquid covers above a horizontal contact line at
+ * height cos_min R in a sphere of radius R (ry_tamponade's z_contact). */
+ry_status ry_wall_share_above(const ry_sim *sim, const ry_region *reg, const double centre[3],
+                              const double up[3], double cos_min, double *share, ry_error *err);
+
 /* The case section `retina_regions` (ry_sim_setup calls it; each region's probe is appended
  * to the measurements), and its release. */
 ry_status ry_regions_setup(ry_sim *sim, ry_case *c, ry_error *err);

@@ -113,5 +113,6 @@ int ry_cli_validate_air(const char *root, const char *out, int quick, int *failu
 int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_eye_clinical(const char *root, const char *out, int quick, int *failures);
+int ry_cli_validate_eye_fine(const char *root, const char *out, int quick, int *failures);
 
 #endif

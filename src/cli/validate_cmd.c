@@ -34,6 +34,7 @@ static const validation validations[] = {
     {"eye", ry_cli_validate_eye},
     {"eye_positions", ry_cli_validate_eye_positions},
     {"eye_clinical", ry_cli_validate_eye_clinical},
+    {"eye_fine", ry_cli_validate_eye_fine},
     {"embolization", ry_cli_validate_embolization},
     {"embolization3d", ry_cli_validate_embolization3d},
     {"embolization3d_all", ry_cli_validate_embolization3d_all},

@@ -146,17 +146,6 @@ static ry_status probe_front_x(const ry_sim *sim, double *v, ry_error *err) {
     return RY_OK;
 }
 
-/* Cells of edge >= radius over the current positions, for probes that must not read the run's
- * neighbour structures (they may be older than the particle set: open boundaries add and remove
- * particles after a step); x and per receive the coordinates and the periodic directions. */
-static ry_status current_cells(const ry_sim *sim, double radius, ry_cell_list *cl,
-                               const double *x[3], int per[3], ry_error *err) {
-    memset(cl, 0, sizeof *cl);
-    ry_particles_coords(&sim->ps, x);
-    for (int d = 0; d < 3; ++d) per[d] = d < sim->dim && sim->box.periodic[d];
-    return ry_cells_build(cl, &sim->box, radius, sim->ps.n, x, err);
-}
-
 /* Fluid particles inside a wall: inside the lattice cell (a square or cube of side dx centred
  * on the particle) of some wall particle, i.e. within dx/2 of it in every direction. The wall
  * surface lies half a spacing beyond the outer wall layer, so this counts exactly the fluid
@@ -179,7 +168,7 @@ static ry_status probe_in_wall(const ry_sim *sim, double *v, ry_error *err) {
         periodic |= per[d];
     }
     ry_particles_coords(ps, x);
-    if (!run) RY_TRY(current_cells(sim, 2.0 * sim->dx, &own, x, per, err));
+    if (!run) RY_TRY(ry_probe_current_cells(sim, 2.0 * sim->dx, &own, x, per, err));
     const ry_cell_list *cl = run ? run : &own;
     /* The cells binned from positions within lim + drift of a particle in every direction
      * (the binning is monotone in the position); the 3 x 3 (x 3) block in periodic domains. */
@@ -271,7 +260,7 @@ static ry_status droplet_measure(const ry_sim *sim, double out[6], ry_error *err
     ry_cell_list cl;
     const double *x[3];
     int per[3];
-    ry_status st = current_cells(sim, 1.5 * sim->dx, &cl, x, per, err);
+    ry_status st = ry_probe_current_cells(sim, 1.5 * sim->dx, &cl, x, per, err);
     if (st != RY_OK) {
         free(parent);
         free(flags);
@@ -408,151 +397,17 @@ static ry_status probe_filled_fraction(const ry_sim *sim, double *v, ry_error *e
     return RY_OK;
 }
 
-/* Whether wall particle i belongs to a port: within half the diagonal of an open boundary's
- * cross-section plus the kernel support radius of the line through the zone's centre along its
- * flow axis (the channel leading to the port and the collar around it). */
-static int near_port_axis(const ry_sim *sim, size_t i) {
-    for (int b = 0; b < sim->nopen; ++b) {
-        const ry_open_boundary *o = &sim->open[b];
-        double half2 = 0, r2 = 0;
-        for (int d = 0; d < sim->dim; ++d) {
-            if (d == o->axis) continue;
-            const double w = 0.5 * (o->hi[d] - o->lo[d]);
-            const double x = sim->ps.f[RY_F_X + d][i] - 0.5 * (o->lo[d] + o->hi[d]);
-            half2 += w * w;
-            r2 += x * x;
-        }
-        const double rmax = sqrt(half2) + sim->kernel.radius;
-        if (r2 <= rmax * rmax) return 1;
-    }
-    return 0;
-}
-
-/* Wall wetted by the injected fluid: among the wall particles with a fluid particle within the
- * kernel support (the wetted wall, e.g. the retina), the fraction whose nearest fluid particle
- * is of the second material (the injected fluid, e.g. silicone oil). Wall particles of the
- * ports (near_port_axis) do not count, nor, with a region, those outside it. Searches cells of
- * its own (current_cells). */
-static ry_status wall_contact(const ry_sim *sim, const ry_region *reg, double *v, ry_error *err) {
-    const ry_particles *ps = &sim->ps;
-    const double rad2 = sim->kernel.radius * sim->kernel.radius;
-    ry_cell_list cl;
-    const double *x[3];
-    int per[3];
-    RY_TRY(current_cells(sim, sim->kernel.radius, &cl, x, per, err));
-    size_t wet = 0, oil = 0;
-    for (size_t i = 0; i < ps->n; ++i) {
-        if (ps->kind[i] != RY_KIND_WALL || near_port_axis(sim, i)) continue;
-        if (reg) {
-            double c = 0, r2 = 0;
-            for (int d = 0; d < 3; ++d) {
-                const double e = x[d][i] - reg->centre[d];
-                c += e * reg->dir[d];
-                r2 += e * e;
-            }
-            if (!(r2 > 0) || c < reg->cos_half * sqrt(r2)) continue;
-        }
-        double best = rad2;
-        int mat = -1;
-        size_t cells[27];
-        const int nc = ry_cells_neighbours(&cl, per, cl.cell_of[i], cells);
-        for (int c = 0; c < nc; ++c)
-            for (size_t q = cl.start[cells[c]]; q < cl.start[cells[c] + 1]; ++q) {
-                const uint32_t j = cl.order[q];
-                if (ps->kind[j] != RY_KIND_FLUID) continue;
-                double dx[3] = {0, 0, 0}, r2 = 0;
-                for (int d = 0; d < sim->dim; ++d) dx[d] = x[d][i] - x[d][j];
-                ry_box_min_image(&sim->box, dx);
-                for (int d = 0; d < sim->dim; ++d) r2 += dx[d] * dx[d];
-                if (r2 < best) {
-                    best = r2;
-                    mat = ps->material[j];
-                }
-            }
-        if (mat < 0) continue;
-        ++wet;
-        oil += mat == 1;
-    }
-    ry_cells_free(&cl);
-    *v = wet ? (double)oil / (double)wet : 0.0;
-    return RY_OK;
-}
-
-static ry_status probe_oil_wall_contact(const ry_sim *sim, double *v, ry_error *err) {
+/* The injected fluid kept: its fluid particles' volume (count x dx^dim) over the volume that came
+ * in through the inlets; 1 until it reaches an outlet (the eye: the oil at the drainage). */
+static ry_status probe_injected_kept(const ry_sim *sim, double *v, ry_error *err) {
     RY_CHECK(err, sim->nmat >= 2, RY_ERR_INPUT,
-             "measurement 'oil_wall_contact' needs two materials (the second is the injected one)");
-    return wall_contact(sim, NULL, v, err);
-}
-
-/* coverage_NAME: oil_wall_contact over the wall particles of retina region `item`. */
-static ry_status probe_region_coverage(const ry_sim *sim, int item, double *v, ry_error *err) {
-    RY_CHECK(err, item >= 0 && item < sim->nregions, RY_ERR_INTERNAL, "no retina region %d", item);
-    return wall_contact(sim, &sim->regions[item], v, err);
-}
-
-/* The case section `retina_regions`: each item's name, direction, half angle [degrees] and
- * centre (default the origin); its probe coverage_NAME. */
-ry_status ry_regions_setup(ry_sim *sim, ry_case *c, ry_error *err) {
-    size_t n = 0;
-    if (!ry_case_has(c, "retina_regions")) return RY_OK;
-    RY_TRY(ry_case_count(c, "retina_regions", &n, err));
-    char k[96], where[256];
-    RY_CHECK(err, sim->dim == 3 && sim->nmat >= 2 && n <= 64, RY_ERR_INPUT,
-             "%s: key 'retina_regions': needs dimension 3 and two materials (the second the "
-             "injected one), and at most 64 regions",
-             ry_case_where(c, "retina_regions", where, sizeof where));
-    sim->regions = calloc(n ? n : 1, sizeof *sim->regions);
-    RY_CHECK(err, sim->regions != NULL, RY_ERR_NOMEM, "out of memory");
-    for (size_t r = 0; r < n; ++r) {
-        ry_region *g = &sim->regions[r];
-        const char *name;
-        double zero[3] = {0, 0, 0}, half, nd = 0;
-        snprintf(k, sizeof k, "retina_regions[%zu].name", r);
-        RY_TRY(ry_case_string(c, k, NULL, &name, err));
-        RY_CHECK(err,
-                 name[0] && strlen(name) < 48 &&
-                     strspn(name, "abcdefghijklmnopqrstuvwxyz"
-                                  "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                  "0123456789_") == strlen(name),
-                 RY_ERR_INPUT,
-                 "%s: key '%s': a region's name is 1 to 47 letters, digits or '_' (it names "
-                 "the column coverage_NAME)",
-                 ry_case_where(c, k, where, sizeof where), k);
-        for (size_t q = 0; q < r; ++q)
-            RY_CHECK(err, strcmp(sim->regions[q].name, name) != 0, RY_ERR_INPUT,
-                     "%s: key '%s': region '%s' is named twice",
-                     ry_case_where(c, k, where, sizeof where), k, name);
-        snprintf(k, sizeof k, "retina_regions[%zu].direction", r);
-        RY_TRY(ry_case_vector(c, k, NULL, 3, g->dir, err));
-        for (int d = 0; d < 3; ++d) nd += g->dir[d] * g->dir[d];
-        RY_CHECK(err, nd > 0, RY_ERR_INPUT, "%s: key '%s': the direction must not be zero",
-                 ry_case_where(c, k, where, sizeof where), k);
-        for (int d = 0; d < 3; ++d) g->dir[d] /= sqrt(nd);
-        snprintf(k, sizeof k, "retina_regions[%zu].half_angle", r);
-        RY_TRY(ry_case_double(c, k, NULL, 0.0, 180.0, &half, err));
-        RY_CHECK(err, half > 0, RY_ERR_INPUT, "%s: key '%s': must be > 0 degrees",
-                 ry_case_where(c, k, where, sizeof where), k);
-        g->cos_half = cos(half * 3.14159265358979323846 / 180.0);
-        snprintf(k, sizeof k, "retina_regions[%zu].centre", r);
-        RY_TRY(ry_case_vector(c, k, zero, 3, g->centre, err));
-        const size_t len = strlen(name);
-        g->name = malloc(2 * len + 16);
-        RY_CHECK(err, g->name != NULL, RY_ERR_NOMEM, "out of memory");
-        memcpy(g->name, name, len + 1);
-        char *column = g->name + len + 1; /* coverage_NAME, in the same block */
-        snprintf(column, len + 15, "coverage_%s", name);
-        g->probe = (ry_probe){column, "share of the region's wetted wall the injected fluid covers",
-                              NULL, probe_region_coverage, (int)r};
-        sim->nregions = (int)r + 1;
-    }
+             "measurement 'injected_kept' needs two materials (the second is the injected one)");
+    const ry_particles *ps = &sim->ps;
+    size_t ni = 0;
+    for (size_t i = 0; i < ps->n; ++i) ni += ps->kind[i] == RY_KIND_FLUID && ps->material[i] == 1;
+    const double in = ry_open_volume(sim, RY_OPEN_INLET);
+    *v = in > 0 ? (double)ni * pow(sim->dx, sim->dim) / in : 1.0;
     return RY_OK;
-}
-
-void ry_regions_free(ry_sim *sim) {
-    for (int r = 0; r < sim->nregions; ++r) free(sim->regions[r].name);
-    free(sim->regions);
-    sim->regions = NULL;
-    sim->nregions = 0;
 }
 
 ry_status ry_probe_eval(const ry_probe *p, const ry_sim *sim, double *value, ry_error *err) {
@@ -659,6 +514,11 @@ static const ry_probe p_inflow = {"inflow_volume",
 static const ry_probe p_outflow = {"outflow_volume",
                                    "volume that left through outlets [m^3] (particles x dx^dim)",
                                    probe_outflow, NULL, 0};
+static const ry_probe p_kept = {
+    "injected_kept",
+    "volume of the injected fluid (the second material) inside over the volume injected: 1 "
+    "until it reaches an outlet",
+    probe_injected_kept, NULL, 0};
 static const ry_probe p_nfluid = {"fluid_particles", "number of fluid particles",
                                   probe_fluid_particles, NULL, 0};
 static const ry_probe p_kin = {"kinetic_energy", "fluid kinetic energy [J]", probe_kinetic, NULL,
@@ -695,11 +555,6 @@ static const ry_probe p_iters_mean = {
 static const ry_probe p_filled = {
     "filled_fraction", "fluid particles of the second (injected) material over all fluid particles",
     probe_filled_fraction, NULL, 0};
-static const ry_probe p_oil_wall = {
-    "oil_wall_contact",
-    "fraction of the wetted wall (without the ports' channels and collars) whose nearest fluid "
-    "particle is of the second material",
-    probe_oil_wall_contact, NULL, 0};
 static const ry_probe p_interface = {
     "interface_amplitude",
     "2D, two fluids in a box one wavelength wide: amplitude of the interface mode "
@@ -736,7 +591,8 @@ static const ry_probe p_droplet_offset = {
 
 static const ry_probe *const all_probes[] = {&p_mass,
                                              &p_filled,
-                                             &p_oil_wall,
+                                             &ry_probe_oil_wall_contact,
+                                             &p_kept,
                                              &p_interface,
                                              &ry_probe_interface_height,
                                              &p_wave,

@@ -390,15 +390,16 @@ static void test_eye_posterior_drain(void **state) {
  * top of the cavity emptied). The inflow is 0.1 ml/s within a layer of the inlet's 2 x 2
  * lattice (0.0135 ml: a layer enters every 0.135 s), all the injected oil is inside, and
  * nothing moves faster than 0.1 m/s (measured 0.048 m/s; the pressure outlet's saline fell
- * through the drainage at 0.3-1 m/s). */
+ * through the drainage at 0.3-1 m/s). The probe injected_kept reads that share. */
 static void test_eye_clinical_rate(void **state) {
     (void)state;
     const char *sets[] = {"time.end=1.0", "time.output_interval=0.1", "output.vtk=false"};
     ry_table s;
     run_case("cases/eye_posterior_drain_clinical.yaml", "eye_clinical", 3, sets, &s, NULL, NULL);
     const int cn = ry_table_col(&s, "fluid_particles"), cf = ry_table_col(&s, "filled_fraction"),
-              ci = ry_table_col(&s, "inflow_volume"), cv = ry_table_col(&s, "max_speed");
-    assert_true(cn >= 0 && cf >= 0 && ci >= 0 && cv >= 0 && s.nrows >= 10);
+              ci = ry_table_col(&s, "inflow_volume"), cv = ry_table_col(&s, "max_speed"),
+              ck = ry_table_col(&s, "injected_kept");
+    assert_true(cn >= 0 && cf >= 0 && ci >= 0 && cv >= 0 && ck >= 0 && s.nrows >= 10);
     const double n0 = ry_table_at(&s, 0, cn), dx3 = 0.0015 * 0.0015 * 0.0015;
     double drift = 0, vmax = 0;
     for (size_t r = 0; r < s.nrows; ++r) {
@@ -414,6 +415,8 @@ static void test_eye_clinical_rate(void **state) {
     assert_true(fabs(vin - 1e-7 * 1.0) <= 4 * dx3 * (1 + 1e-9));
     assert_true(drift <= manifest_tol(root, "eye_clinical", "fluid_count_quick"));
     assert_true(fabs(oil / vin - 1) <= 1e-6);
+    /* the probe injected_kept is that share (the oil has not reached the drainage) */
+    assert_true(fabs(ry_table_at(&s, e, ck) - oil / vin) <= 1e-9);
     assert_true(vmax <= 0.1);
     ry_table_free(&s);
 }

@@ -1,7 +1,8 @@
 /* The retina regions (case section `retina_regions`) and their coverage columns: a cavity of
  * radius 6 mm inside a wall shell, its upper half (y > 0) oil, the lower saline; a cone about
  * +y is all oil, one about -y none, one about +x or -x half; the columns follow the case's
- * measurements in series.csv's order; bad sections are refused with the key named. The probe
+ * measurements in series.csv's order; ry_wall_share_above counts the same walls by their
+ * direction; bad sections are refused with the key named. The probe
  * interface_height finds the level between the two liquids on the vertical through the origin,
  * whichever way gravity points, and leaves a stray particle of either liquid out. */
 #define _POSIX_C_SOURCE 200809L
@@ -80,6 +81,38 @@ static void test_coverage(void **state) {
     assert_float_equal(column(&sim, "coverage_nasal"), 0.5, 0.05);
     assert_float_equal(column(&sim, "coverage_temporal"), 0.5, 0.05);
     assert_float_equal(column(&sim, "oil_wall_contact"), 0.5, 0.05);
+    /* the wall a contact line at a given height would leave to the oil, over the same walls */
+    const double o[3] = {0, 0, 0}, up[3] = {0, 2, 0}, side[3] = {1, 0, 0};
+    double share = -1;
+    assert_int_equal(ry_wall_share_above(&sim, NULL, o, up, -1.0, &share, &err), RY_OK);
+    assert_float_equal(share, 1.0, 0.0);
+    assert_int_equal(ry_wall_share_above(&sim, NULL, o, up, 1.0 + 1e-9, &share, &err), RY_OK);
+    assert_float_equal(share, 0.0, 0.0);
+    assert_int_equal(ry_wall_share_above(&sim, NULL, o, up, 0.0, &share, &err), RY_OK);
+    assert_float_equal(share, 0.5, 0.05);
+    assert_int_equal(ry_wall_share_above(&sim, NULL, o, side, 0.0, &share, &err), RY_OK);
+    assert_float_equal(share, 0.5, 0.05);
+    /* a region: the superior cone of 45 degrees lies wholly above 50 degrees from up, the
+     * inferior wholly below */
+    const double c50 = cos(50.0 * 3.14159265358979323846 / 180.0);
+    assert_int_equal(ry_wall_share_above(&sim, &sim.regions[0], o, up, c50, &share, &err), RY_OK);
+    assert_float_equal(share, 1.0, 0.0);
+    assert_int_equal(ry_wall_share_above(&sim, &sim.regions[1], o, up, c50, &share, &err), RY_OK);
+    assert_float_equal(share, 0.0, 0.0);
+    /* the oil in the cone of directions 0.3 or more from up: about the sphere's area above
+     * 0.3 R (0.35); the wall whose nearest fluid particle is oil reads 0.307 here, where the
+     * cavity is 6 spacings in radius and a wall particle's nearest fluid particle lies off its
+     * direction (the same count done apart from the engine, brute force) */
+    for (size_t i = 0; i < sim.ps.n; ++i) {
+        const double x = sim.ps.f[RY_F_X][i], y = sim.ps.f[RY_F_Y][i], z = sim.ps.f[RY_F_Z][i];
+        if (sim.ps.kind[i] == RY_KIND_FLUID)
+            sim.ps.material[i] = y > 0.3 * sqrt(x * x + y * y + z * z);
+    }
+    assert_int_equal(ry_wall_share_above(&sim, NULL, o, up, 0.3, &share, &err), RY_OK);
+    assert_float_equal(share, 0.35, 0.025);
+    assert_float_equal(column(&sim, "oil_wall_contact"), 0.307, 0.001);
+    const double none[3] = {0, 0, 0};
+    assert_int_equal(ry_wall_share_above(&sim, NULL, o, none, 0.0, &share, &err), RY_ERR_INPUT);
     ry_sim_free(&sim);
     ry_case_free(c);
 }
