@@ -80,6 +80,11 @@ typedef struct ry_cli_slice {
     int ax, ay, mirror;
     double marker_size;
 } ry_cli_slice;
+/* Runs a case (overrides sets) into odir, from the newest checkpoint there if there is one,
+ * printing its progress every 5 minutes; Ctrl-C or SIGTERM stops it with a checkpoint
+ * (RY_ERR_INTERRUPTED, sim kept). On other failures sim is freed. */
+ry_status ry_cli_run_or_resume(const char *cpath, int nset, const char *const *sets,
+                               const char *odir, ry_sim *sim, ry_run_stats *stats, ry_error *err);
 /* ry_cli_slice_markers for any slice. */
 void ry_cli_slice_markers_in(ry_plot *p, int panel, const ry_sim *sim, const ry_cli_slice *sl,
                              const char *const label[3], int legend);

@@ -1,8 +1,10 @@
 /* What the validations share: series into plots, the PASS/FAIL lines, plots written, slices of
  * 3D runs. */
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 
 #include "cli/cli.h"
 #include "ryushi/manifest.h"
@@ -144,4 +146,43 @@ int ry_cli_fail(int *failures, const ry_error *err) {
     fprintf(stderr, "ryushi: validate: %s\n", err->msg);
     ++*failures;
     return 1;
+}
+
+static volatile sig_atomic_t stop_requested;
+static void on_signal(int sig) {
+    (void)sig;
+    stop_requested = 1;
+}
+
+static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
+    (void)ctx;
+    printf("  t = %.3f s, %.3g particle-steps/s, at most %.0f s to go\n", sim->t, rate, eta);
+    fflush(stdout);
+}
+
+ry_status ry_cli_run_or_resume(const char *cpath, int nset, const char *const *sets,
+                               const char *odir, ry_sim *sim, ry_run_stats *stats, ry_error *err) {
+    char ck[4200];
+    struct stat sb;
+    snprintf(ck, sizeof ck, "%s/checkpoints", odir);
+    const int resume = stat(ck, &sb) == 0 && S_ISDIR(sb.st_mode);
+    RY_TRY(ry_setup_case_file(cpath, nset, sets, odir, sim, err));
+    ry_status st = RY_OK;
+    char used[4300] = "";
+    if (resume) {
+        st = ry_restart_newest(sim, odir, used, sizeof used, NULL, 0, err);
+        if (st == RY_OK) printf("  resuming from %s (t = %.4g s)\n", used, sim->t);
+    }
+    if (st == RY_OK) {
+        fflush(stdout);
+        stop_requested = 0;
+        void (*old_int)(int) = signal(SIGINT, on_signal);
+        void (*old_term)(int) = signal(SIGTERM, on_signal);
+        ry_run_hooks hooks = {on_progress, NULL, 300.0, &stop_requested};
+        st = ry_run(sim, &hooks, stats, err);
+        signal(SIGINT, old_int);
+        signal(SIGTERM, old_term);
+    }
+    if (st != RY_OK && st != RY_ERR_INTERRUPTED) ry_sim_free(sim);
+    return st;
 }

@@ -20,11 +20,9 @@
  * degrees), compared in embolization3d_wide.md and .png. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli/cli.h"
 #include "ryushi/atomic_file.h"
@@ -45,46 +43,6 @@
 #define G 9.8
 #define T_EXPERIMENT 11.72 /* the seed's experiment [s] */
 #define T_SEED_SIM 14.0    /* the seed's simulation [s] */
-
-static volatile sig_atomic_t stop_requested;
-static void on_signal(int sig) {
-    (void)sig;
-    stop_requested = 1;
-}
-
-static void on_progress(void *ctx, const ry_sim *sim, double rate, double eta) {
-    (void)ctx;
-    printf("  t = %.3f s, %.3g particle-steps/s, at most %.0f s to go\n", sim->t, rate, eta);
-    fflush(stdout);
-}
-
-/* Runs the case into odir, from the newest checkpoint there if there is one. */
-static ry_status run_or_resume(const char *cpath, int nset, const char *const *sets,
-                               const char *odir, ry_sim *sim, ry_run_stats *stats, ry_error *err) {
-    char ck[4200];
-    struct stat sb;
-    snprintf(ck, sizeof ck, "%s/checkpoints", odir);
-    const int resume = stat(ck, &sb) == 0 && S_ISDIR(sb.st_mode);
-    RY_TRY(ry_setup_case_file(cpath, nset, sets, odir, sim, err));
-    ry_status st = RY_OK;
-    char used[4300] = "";
-    if (resume) {
-        st = ry_restart_newest(sim, odir, used, sizeof used, NULL, 0, err);
-        if (st == RY_OK) printf("  resuming from %s (t = %.4g s)\n", used, sim->t);
-    }
-    if (st == RY_OK) {
-        fflush(stdout);
-        stop_requested = 0;
-        void (*old_int)(int) = signal(SIGINT, on_signal);
-        void (*old_term)(int) = signal(SIGTERM, on_signal);
-        ry_run_hooks hooks = {on_progress, NULL, 300.0, &stop_requested};
-        st = ry_run(sim, &hooks, stats, err);
-        signal(SIGINT, old_int);
-        signal(SIGTERM, old_term);
-    }
-    if (st != RY_OK && st != RY_ERR_INTERRUPTED) ry_sim_free(sim);
-    return st;
-}
 
 /* Slice y = 0 of the tank (|y| < dx/2): walls, water and the embolic liquid as markers, x and z
  * in mm, over the walls' extent (the tanks differ in width). */
@@ -235,7 +193,7 @@ static void run_variant(const char *root, const char *out, int quick, const vari
     ry_table *s = &res->s;
     /* an interrupted run (Ctrl-C) is reported as far as it went, and counts as a failure */
     const ry_status rs =
-        run_or_resume(cpath, quick || t_left > 0 ? 2 : 1, sets, odir, &sim, &stats, &err);
+        ry_cli_run_or_resume(cpath, quick || t_left > 0 ? 2 : 1, sets, odir, &sim, &stats, &err);
     if (rs == RY_ERR_INTERRUPTED) {
         fprintf(stderr, "ryushi: validate: %s; the same command goes on from there\n", err.msg);
         ++*failures;

@@ -9,7 +9,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli/cli.h"
 #include "ryushi/atomic_file.h"
@@ -34,22 +33,6 @@ static ry_status share_eval(ry_sim *sim, void *ctx, ry_error *err) {
     share_call *c = ctx;
     const double o[3] = {0, 0, 0};
     return ry_wall_share_above(sim, c->reg, o, c->up, c->cos_min, &c->share, err);
-}
-
-/* One spacing's run (resumed from its folder's newest checkpoint where there is one). */
-static ry_status run_resumable(const char *cpath, int nset, const char *const *sets,
-                               const char *odir, ry_sim *sim, ry_run_stats *stats, ry_error *err) {
-    char ck[4200], used[4300] = "", skipped[2048] = "";
-    struct stat sb;
-    snprintf(ck, sizeof ck, "%s/checkpoints", odir);
-    const int resume = stat(ck, &sb) == 0 && S_ISDIR(sb.st_mode);
-    RY_TRY(ry_setup_case_file(cpath, nset, sets, odir, sim, err));
-    if (resume &&
-        ry_restart_newest(sim, odir, used, sizeof used, skipped, sizeof skipped, err) == RY_OK)
-        printf("  resumed from %s at t = %.3f s\n", used, sim->t);
-    const ry_status st = ry_run(sim, NULL, stats, err);
-    if (st != RY_OK) ry_sim_free(sim);
-    return st;
 }
 
 /* The equilibrium's Bond number and contact angle from the case: the cavity (bodies[0]), the
@@ -114,7 +97,11 @@ int ry_cli_validate_eye_fine(const char *root, const char *out, int quick, int *
         const char *sets[] = {sp, "output.vtk=false"};
         ry_sim sim;
         ry_run_stats stats;
-        if (run_resumable(cpath, 2, sets, odir, &sim, &stats, &err) != RY_OK) {
+        const ry_status rs = ry_cli_run_or_resume(cpath, 2, sets, odir, &sim, &stats, &err);
+        if (rs == RY_ERR_INTERRUPTED) { /* reported as far as it went; a failure */
+            fprintf(stderr, "ryushi: validate: %s; the same command goes on from there\n", err.msg);
+            ++*failures;
+        } else if (rs != RY_OK) {
             ry_cli_fail(failures, &err);
             continue;
         }
