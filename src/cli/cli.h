@@ -119,5 +119,10 @@ int ry_cli_validate_eye(const char *root, const char *out, int quick, int *failu
 int ry_cli_validate_eye_positions(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_eye_clinical(const char *root, const char *out, int quick, int *failures);
 int ry_cli_validate_eye_fine(const char *root, const char *out, int quick, int *failures);
+/* The eye cases' tamponade: the cavity's radius (bodies[0]), the saline's and the oil's
+ * densities (materials 0 and 1), their tension (scheme.surface_tension) and the Bond number
+ * (rho_s - rho_o) g R^2 / sigma at head_position's g (validate_eye.c). */
+ry_status ry_cli_eye_bond(ry_case *c, double *R, double *rho_s, double *rho_o, double *sigma,
+                          double *bond, ry_error *err);
 
 #endif

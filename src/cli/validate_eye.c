@@ -115,6 +115,16 @@ static ry_status eye_segments(const char *root, const char *out, const char *cas
  * (implicit viscosity: about 6e-4 s, set by the speeds; again at 2e-4 s). Checks: with the drainage
  * where the oil arrives last, the cavity keeps the injected oil (within 3 %), and the filling and
  * the contact agree at the two time steps. */
+ry_status ry_cli_eye_bond(ry_case *c, double *R, double *rho_s, double *rho_o, double *sigma,
+                          double *bond, ry_error *err) {
+    RY_TRY(ry_case_double(c, "bodies[0].radius", NULL, 0, INFINITY, R, err));
+    RY_TRY(ry_case_double(c, "materials[0].density", NULL, 0, INFINITY, rho_s, err));
+    RY_TRY(ry_case_double(c, "materials[1].density", NULL, 0, INFINITY, rho_o, err));
+    RY_TRY(ry_case_double(c, "scheme.surface_tension", NULL, 0, INFINITY, sigma, err));
+    *bond = (*rho_s - *rho_o) * 9.81 * *R * *R / *sigma; /* head_position's gravity */
+    return RY_OK;
+}
+
 /* The equilibrium the filling tends to (src/validate/tamponade.c): the oil's axisymmetric
  * Young-Laplace cap in the cavity of cases/eye_sphere.yaml (its radius, the two densities and
  * the oil-saline tension of the case), the contact angle through the saline 18 degrees (Fawcett,
@@ -131,13 +141,10 @@ static double eye_equilibrium(const char *root, const char *out, double *R, int 
     memset(&s, 0, sizeof s);
     s.dim = 3;
     s.nmat = 2;
-    double rho_s, rho_o, sigma;
-    const double theta = 18.0 * 3.14159265358979323846 / 180.0, g = 9.81;
+    double rho_s, rho_o, sigma, bond;
+    const double theta = 18.0 * 3.14159265358979323846 / 180.0;
     if (ry_case_load(&c, path, &err) != RY_OK ||
-        ry_case_double(c, "bodies[0].radius", NULL, 0, INFINITY, R, &err) != RY_OK ||
-        ry_case_double(c, "materials[0].density", NULL, 0, INFINITY, &rho_s, &err) != RY_OK ||
-        ry_case_double(c, "materials[1].density", NULL, 0, INFINITY, &rho_o, &err) != RY_OK ||
-        ry_case_double(c, "scheme.surface_tension", NULL, 0, INFINITY, &sigma, &err) != RY_OK ||
+        ry_cli_eye_bond(c, R, &rho_s, &rho_o, &sigma, &bond, &err) != RY_OK ||
         ry_regions_setup(&s, c, &err) != RY_OK) {
         ry_case_free(c);
         ry_regions_free(&s);
@@ -145,7 +152,6 @@ static double eye_equilibrium(const char *root, const char *out, double *R, int 
         return NAN;
     }
     ry_case_free(c);
-    const double bond = (rho_s - rho_o) * g * *R * *R / sigma;
     char mdp[4096];
     snprintf(mdp, sizeof mdp, "%s/eye_equilibrium.md", out);
     FILE *md = fopen(mdp, "w");

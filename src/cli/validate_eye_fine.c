@@ -36,26 +36,6 @@ static ry_status share_eval(ry_sim *sim, void *ctx, ry_error *err) {
     return ry_wall_share_above(sim, c->reg, o, c->up, c->cos_min, &c->share, err);
 }
 
-/* The equilibrium's Bond number and contact angle from the case: the cavity (bodies[0]), the
- * two liquids' densities, the interfacial tension and the angle. */
-static int case_equilibrium(const char *cpath, double g, double *bond, double *theta, double *R,
-                            ry_error *err) {
-    ry_case *c = NULL;
-    double rho_s, rho_o, sigma, deg;
-    const int ok =
-        ry_case_load(&c, cpath, err) == RY_OK &&
-        ry_case_double(c, "bodies[0].radius", NULL, 0, INFINITY, R, err) == RY_OK &&
-        ry_case_double(c, "materials[0].density", NULL, 0, INFINITY, &rho_s, err) == RY_OK &&
-        ry_case_double(c, "materials[1].density", NULL, 0, INFINITY, &rho_o, err) == RY_OK &&
-        ry_case_double(c, "scheme.surface_tension", NULL, 0, INFINITY, &sigma, err) == RY_OK &&
-        ry_case_double(c, "scheme.contact_angle", NULL, 0, 180, &deg, err) == RY_OK;
-    ry_case_free(c);
-    if (!ok) return 0;
-    *bond = (rho_s - rho_o) * g * *R * *R / sigma;
-    *theta = deg * PI / 180.0;
-    return 1;
-}
-
 int ry_cli_validate_eye_fine(const char *root, const char *out, int quick, int *failures) {
     enum { COUNT, NTOL };
     static const char *const keys[NTOL] = {"fluid_count"};
@@ -68,6 +48,15 @@ int ry_cli_validate_eye_fine(const char *root, const char *out, int quick, int *
     char cpath[4096], mdp[4096];
     snprintf(cpath, sizeof cpath, "%s/cases/eye_posterior_drain_fine.yaml", root);
     ry_error err = {0};
+    /* the equilibrium's Bond number and contact angle, from the case */
+    ry_case *c = NULL;
+    double R, rho_s, rho_o, sigma, bond, deg;
+    const int ok = ry_case_load(&c, cpath, &err) == RY_OK &&
+                   ry_cli_eye_bond(c, &R, &rho_s, &rho_o, &sigma, &bond, &err) == RY_OK &&
+                   ry_case_double(c, "scheme.contact_angle", NULL, 0, 180, &deg, &err) == RY_OK;
+    ry_case_free(c);
+    if (!ok) return ry_cli_fail(failures, &err);
+    const double theta = deg * PI / 180.0;
     ry_plot *p = NULL;
     if (ry_plot_new(&p, 1, 2, 1280, 520, &err) != RY_OK) return ry_cli_fail(failures, &err);
     ry_plot_title(p,
@@ -107,25 +96,22 @@ int ry_cli_validate_eye_fine(const char *root, const char *out, int quick, int *
             continue;
         }
         /* the end state: the whole cavity's measurements */
-        double fill = NAN, covered = NAN, nfluid = NAN, inflow = NAN, g = 0, up[3] = {0, 0, 0};
+        double fill = NAN, covered = NAN, nfluid = NAN, kept = NAN, g = 0, up[3] = {0, 0, 0};
         ry_sim_probe(&sim, "filled_fraction", &fill);
         ry_sim_probe(&sim, "oil_wall_contact", &covered);
         ry_sim_probe(&sim, "fluid_particles", &nfluid);
-        ry_sim_probe(&sim, "inflow_volume", &inflow);
+        ry_sim_probe(&sim, "injected_kept", &kept);
         for (int d = 0; d < 3; ++d) g += sim.gravity[d] * sim.gravity[d];
         g = sqrt(g);
         for (int d = 0; d < 3; ++d) up[d] = g > 0 ? -sim.gravity[d] / g : 0;
-        double bond = NAN, theta = NAN, R = NAN;
         ry_tamponade t;
-        if (!case_equilibrium(cpath, g, &bond, &theta, &R, &err) ||
-            ry_tamponade_solve(fill, theta, bond, &t, &err) != RY_OK) {
+        if (ry_tamponade_solve(fill, theta, bond, &t, &err) != RY_OK) {
             ry_sim_free(&sim);
             ry_cli_fail(failures, &err);
             continue;
         }
         share_call sc = {NULL, {up[0], up[1], up[2]}, t.z_contact, NAN};
         if (ry_symmetry_measure(&sim, share_eval, &sc, &err) != RY_OK) ry_cli_fail(failures, &err);
-        const double kept = fill * nfluid * pow(sim.dx, 3) / inflow;
         printf("  %.3f mm: %.0f fluid particles in the whole cavity, %ld steps this run, %.0f s; "
                "at t = %.2f s: fill %.3f, retina covered %.3f; the equilibrium of that fill "
                "(Bond %.3f, %.0f degrees) covers %.3f of the same walls (%.3f of the sphere); "

@@ -30,13 +30,25 @@ static int near_port_axis(const ry_sim *sim, size_t i) {
     return 0;
 }
 
+/* Whether the point (x[0][i], x[1][i], x[2][i]) lies in the cone: its direction from the cone's
+ * centre at an angle to its unit direction of cosine cos_half or more. */
+static int in_cone(const ry_region *cone, const double *const x[3], size_t i) {
+    double c = 0, r2 = 0;
+    for (int d = 0; d < 3; ++d) {
+        const double e = x[d][i] - cone->centre[d];
+        c += e * cone->dir[d];
+        r2 += e * e;
+    }
+    return r2 > 0 && c >= cone->cos_half * sqrt(r2);
+}
+
 /* Among the wall particles with a fluid particle within the kernel support (the wetted wall,
  * e.g. the retina), the fraction whose nearest fluid particle is of the second material (the
- * injected fluid, e.g. silicone oil), or with `above` (centre, up direction, cosine) the
- * fraction whose direction from the centre makes an angle with up of cosine >= above[6]. Wall
- * particles of the ports (near_port_axis) do not count, nor, with a region, those outside it.
+ * injected fluid, e.g. silicone oil), or with the cone `above` the fraction in that cone (in_cone).
+ * Wall particles of the ports (near_port_axis) do not count, nor, with a region, those outside
+ * it.
  * Searches cells of its own (ry_probe_current_cells). */
-static ry_status wall_contact(const ry_sim *sim, const ry_region *reg, const double *above,
+static ry_status wall_contact(const ry_sim *sim, const ry_region *reg, const ry_region *above,
                               double *v, ry_error *err) {
     const ry_particles *ps = &sim->ps;
     const double rad2 = sim->kernel.radius * sim->kernel.radius;
@@ -47,15 +59,7 @@ static ry_status wall_contact(const ry_sim *sim, const ry_region *reg, const dou
     size_t wet = 0, oil = 0;
     for (size_t i = 0; i < ps->n; ++i) {
         if (ps->kind[i] != RY_KIND_WALL || near_port_axis(sim, i)) continue;
-        if (reg) {
-            double c = 0, r2 = 0;
-            for (int d = 0; d < 3; ++d) {
-                const double e = x[d][i] - reg->centre[d];
-                c += e * reg->dir[d];
-                r2 += e * e;
-            }
-            if (!(r2 > 0) || c < reg->cos_half * sqrt(r2)) continue;
-        }
+        if (reg && !in_cone(reg, x, i)) continue;
         double best = rad2;
         int mat = -1;
         size_t cells[27];
@@ -75,16 +79,7 @@ static ry_status wall_contact(const ry_sim *sim, const ry_region *reg, const dou
             }
         if (mat < 0) continue;
         ++wet;
-        if (above) {
-            double c = 0, r2 = 0;
-            for (int d = 0; d < 3; ++d) {
-                const double e = x[d][i] - above[d];
-                c += e * above[3 + d];
-                r2 += e * e;
-            }
-            oil += r2 > 0 && c >= above[6] * sqrt(r2);
-        } else
-            oil += mat == 1;
+        oil += above ? in_cone(above, x, i) : mat == 1;
     }
     ry_cells_free(&cl);
     *v = wet ? (double)oil / (double)wet : 0.0;
@@ -105,15 +100,15 @@ const ry_probe ry_probe_oil_wall_contact = {
 
 ry_status ry_wall_share_above(const ry_sim *sim, const ry_region *reg, const double centre[3],
                               const double up[3], double cos_min, double *share, ry_error *err) {
-    double above[7], nu = 0;
+    ry_region above = {.cos_half = cos_min};
+    double nu = 0;
     for (int d = 0; d < 3; ++d) nu += up[d] * up[d];
     RY_CHECK(err, nu > 0, RY_ERR_INPUT, "ry_wall_share_above: the direction up must not be zero");
     for (int d = 0; d < 3; ++d) {
-        above[d] = centre[d];
-        above[3 + d] = up[d] / sqrt(nu);
+        above.centre[d] = centre[d];
+        above.dir[d] = up[d] / sqrt(nu);
     }
-    above[6] = cos_min;
-    return wall_contact(sim, reg, above, share, err);
+    return wall_contact(sim, reg, &above, share, err);
 }
 
 /* coverage_NAME: oil_wall_contact over the wall particles of retina region `item`. */
