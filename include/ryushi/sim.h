@@ -196,6 +196,8 @@ typedef struct ry_open_boundary {
     double lo[3], hi[3]; /* zone */
     int axis, sign;      /* flow along +axis (sign 1) or -axis (sign -1) */
     double velocity[3];  /* inlet (and rate outlet) velocity [m/s] */
+    double ramp;         /* inlet: seconds over which the velocity rises from 0 (0: at once) */
+    int ramped;          /* inlet: its buffer has been set to the full velocity after the ramp */
     double pressure;     /* outlet pressure [Pa] */
     int rate;            /* outlet: its buffer moves at `velocity` (a rate outlet) */
     int material;

@@ -23,6 +23,22 @@ static int flow_axis(const double *v, int dim, int *sign) {
     return axis;
 }
 
+/* The share of an inlet's velocity at time t: 1, or with a ramp T the half cosine
+ * (1 - cos(pi t / T)) / 2 up to T, which starts and ends the rise without a jump in the
+ * acceleration. */
+static double ramp_share(const ry_open_boundary *b, double t) {
+    if (!(b->ramp > 0) || t >= b->ramp) return 1.0;
+    return t <= 0 ? 0.0 : 0.5 * (1.0 - cos(3.14159265358979323846 * t / b->ramp));
+}
+
+/* The time integral of ramp_share from 0 to t: the volume through the zone over U A. */
+static double ramp_time(const ry_open_boundary *b, double t) {
+    if (!(b->ramp > 0)) return t;
+    if (t >= b->ramp) return t - 0.5 * b->ramp;
+    const double pi = 3.14159265358979323846;
+    return t <= 0 ? 0.0 : 0.5 * t - 0.5 * b->ramp / pi * sin(pi * t / b->ramp);
+}
+
 /* Fills an inlet zone with buffer particles on the case lattice (cell centres, as boxes are). */
 static ry_status fill_inlet(ry_sim *sim, const ry_open_boundary *b, ry_error *err) {
     ry_particles *ps = &sim->ps;
@@ -43,7 +59,7 @@ static ry_status fill_inlet(ry_sim *sim, const ry_open_boundary *b, ry_error *er
                 const long idx[3] = {a, bb, cc};
                 for (int d = 0; d < dim; ++d) {
                     ps->f[RY_F_X + d][i] = b->lo[d] + ((double)idx[d] + 0.5) * sim->dx;
-                    ps->f[RY_F_VX + d][i] = b->velocity[d];
+                    ps->f[RY_F_VX + d][i] = b->velocity[d] * ramp_share(b, sim->t);
                 }
                 ps->kind[i] = RY_KIND_INLET;
                 ps->material[i] = (uint8_t)b->material;
@@ -107,6 +123,14 @@ static ry_status zone_velocity(ry_case *c, size_t q, int dim, ry_open_boundary *
     return RY_OK;
 }
 
+/* The optional ramp of an inlet or a rate outlet [s]. */
+static ry_status read_ramp(ry_case *c, size_t q, ry_open_boundary *b, ry_error *err) {
+    char k[128];
+    double none = 0;
+    snprintf(k, sizeof k, "open_boundaries[%zu].ramp", q);
+    return ry_case_double(c, k, &none, 0.0, 1e300, &b->ramp, err);
+}
+
 /* An outlet with `flow_rate` or `velocity`: a rate outlet. */
 static int rate_outlet(ry_case *c, size_t q) {
     char k[128], kv[128];
@@ -156,6 +180,7 @@ ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
             snprintf(k, sizeof k, "open_boundaries[%zu].material", q);
             if ((st = ry_case_choice(c, k, mnames[0], mnames, &mat, err)) != RY_OK) break;
             b->material = mat;
+            if ((st = read_ramp(c, q, b, err)) != RY_OK) break;
         } else if ((b->rate = rate_outlet(c, q))) {
             snprintf(k, sizeof k, "open_boundaries[%zu].pressure", q);
             if (ry_case_has(c, k)) {
@@ -166,6 +191,7 @@ ry_status ry_open_setup(ry_sim *sim, ry_case *c, ry_error *err) {
                 break;
             }
             if ((st = zone_velocity(c, q, dim, b, err)) != RY_OK) break;
+            if ((st = read_ramp(c, q, b, err)) != RY_OK) break;
             snprintf(k, sizeof k, "open_boundaries[%zu].velocity", q);
             memcpy(dir, b->velocity, sizeof dir);
         } else {
@@ -243,11 +269,11 @@ static int rate_zone(const ry_sim *sim, const double *x) {
 }
 
 /* A rate outlet's buffer particles move together along the flow (a plug), at the speed that
- * keeps the volume removed at Q t: U = Q / A while it is on time, faster when it lags, by up to
- * twice U when a layer of the zone (A dx) behind, and slower when it runs ahead, at rest a
- * layer ahead. Fluid that crowds into the zone closer than the lattice's spacing therefore
- * does not leave faster than Q, nor does a zone that starts empty lag it for long. held: nheld
- * pairs (particle, rate outlet), the buffer particles that stay. */
+ * keeps the volume removed at Q t (with a ramp, Q times the ramp's time integral): U = Q / A while
+ * it is on time, faster when it lags, by up to twice U when a layer of the zone (A dx) behind, and
+ * slower when it runs ahead, at rest a layer ahead. Fluid that crowds into the zone closer than the
+ * lattice's spacing therefore does not leave faster than Q, nor does a zone that starts empty lag
+ * it for long. held: nheld pairs (particle, rate outlet), the buffer particles that stay. */
 static ry_status rate_speeds(ry_sim *sim, const size_t *held, size_t nheld, ry_error *err) {
     const double cell = pow(sim->dx, sim->dim);
     double *v = calloc((size_t)sim->nopen, sizeof *v);
@@ -255,14 +281,17 @@ static ry_status rate_speeds(ry_sim *sim, const size_t *held, size_t nheld, ry_e
     for (int q = 0; q < sim->nopen; ++q) {
         const ry_open_boundary *b = &sim->open[q];
         if (b->type != RY_OPEN_OUTLET || !b->rate) continue;
+        /* the cross-section within the domain (a zone cut by a symmetry plane: its half) */
         double area = 1;
         for (int d = 0; d < sim->dim; ++d)
-            if (d != b->axis) area *= b->hi[d] - b->lo[d];
+            if (d != b->axis)
+                area *= fmin(b->hi[d], sim->box.hi[d]) - fmax(b->lo[d], sim->box.lo[d]);
         const double u = fabs(b->velocity[b->axis]);
         /* under MPI each rank counts its own removals (every rank calls this, in order) */
         const double removed = sim->par ? sim->par->sum(sim, (double)b->count) : (double)b->count;
-        const double behind = u * area * sim->t - removed * cell;
-        v[q] = (double)b->sign * u * fmin(2.0, fmax(0.0, 1.0 + behind / (area * sim->dx)));
+        const double behind = u * area * ramp_time(b, sim->t) - removed * cell;
+        v[q] = (double)b->sign * u *
+               fmin(2.0, fmax(0.0, ramp_share(b, sim->t) + behind / (area * sim->dx)));
     }
     for (size_t k = 0; k < nheld; ++k) {
         const ry_open_boundary *b = &sim->open[held[2 * k + 1]];
@@ -270,6 +299,29 @@ static ry_status rate_speeds(ry_sim *sim, const size_t *held, size_t nheld, ry_e
     }
     free(v);
     return RY_OK;
+}
+
+/* The buffer particles of the inlets still ramping up at their share of the velocity at the
+ * time reached (once more at the full velocity when the ramp has ended). */
+static void ramp_speeds(ry_sim *sim) {
+    ry_particles *ps = &sim->ps;
+    for (int q = 0; q < sim->nopen; ++q) {
+        ry_open_boundary *b = &sim->open[q];
+        if (b->type != RY_OPEN_INLET || !(b->ramp > 0) || b->ramped) continue;
+        const double share = ramp_share(b, sim->t);
+        b->ramped = share == 1.0;
+        const double downstream = b->sign > 0 ? b->hi[b->axis] : b->lo[b->axis];
+        const double upstream = b->sign > 0 ? b->lo[b->axis] : b->hi[b->axis];
+        for (size_t i = 0; i < ps->n; ++i) {
+            if (ps->kind[i] != RY_KIND_INLET) continue;
+            double x[3] = {0, 0, 0};
+            for (int d = 0; d < sim->dim; ++d) x[d] = ps->f[RY_F_X + d][i];
+            if (!inside_across(b, x, sim->dim) || past(b, x, upstream) < -sim->dx ||
+                past(b, x, downstream) >= 0)
+                continue;
+            for (int d = 0; d < sim->dim; ++d) ps->f[RY_F_VX + d][i] = b->velocity[d] * share;
+        }
+    }
 }
 
 ry_status ry_open_update(ry_sim *sim, ry_error *err) {
@@ -394,11 +446,13 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
             for (int f = 0; f < ps->nfields; ++f)
                 if (ps->f[f]) ps->f[f][j] = ps->f[f][i];
             ps->f[RY_F_X + b->axis][j] -= (double)b->sign * (b->hi[b->axis] - b->lo[b->axis]);
-            for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][j] = b->velocity[d];
+            for (int d = 0; d < dim; ++d)
+                ps->f[RY_F_VX + d][j] = b->velocity[d] * ramp_share(b, sim->t);
             ps->kind[j] = RY_KIND_INLET;
             ps->material[j] = (uint8_t)b->material;
         }
     }
+    ramp_speeds(sim);
     if (nremove) {
         if (ps->n > n) { /* the new inlet particles stay */
             uint8_t *r = realloc(remove, ps->n);

@@ -2,9 +2,9 @@
  * (cases/eye_posterior_drain_fine.yaml: the posterior drain at 2 ml/s, the oil at 18 degrees on
  * the retina, the half y > 0 of the cavity) at 1.5, 0.75 and 0.375 mm (--quick: 1.5 mm), its
  * coverage over time, and its end state against the Young-Laplace equilibrium of its own fill
- * (src/validate/tamponade.c) over the same walls. The finest run is long (its step collapses in
- * the first milliseconds; docs/reference/eye.md): each spacing's run goes on from the newest
- * checkpoint in its folder, so an interrupted validation resumes. */
+ * (src/validate/tamponade.c) over the same walls. The finest run is long (about two hours on 2
+ * threads; docs/reference/eye.md): each spacing's run goes on from the newest checkpoint in its
+ * folder, so an interrupted validation resumes. */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>

@@ -362,6 +362,81 @@ static void test_channel_rate_outlet(void **state) {
     ry_table_free(&sp);
 }
 
+/* The volume through a zone ramped up over T (the half cosine), over Q: the integral of
+ * (1 - cos(pi s / T)) / 2 from 0 to t, t - T / 2 after the ramp. */
+static double ramped_time(double t, double T) {
+    const double pi = 3.14159265358979323846;
+    return t >= T ? t - 0.5 * T : 0.5 * t - 0.5 * T / pi * sin(pi * t / T);
+}
+
+/* The IISPH channel with its inlet and its rate outlet ramped up over 0.5 s (`ramp`): at the
+ * start the buffer stands still; halfway its particles move at half the velocity, the rate
+ * outlet's lone buffer particle at U (1/2 + Q tau / (A dx)) with nothing removed; to 1 s the
+ * inflow follows Q tau(t) within a layer at every output (A dx = 5e-4 m^2, the inlet counts
+ * whole layers; measured 0.49), and from 0.5 s the outflow within 1.5 layers, the rate outlet's
+ * bound in test_channel_rate_outlet (measured 0.50; 1.49 at 0.3 s, while its zone fills). */
+static void test_ramp(void **state) {
+    (void)state;
+    char cp[4096], od[512], sp[600];
+    iisph_channel_case(cp, sizeof cp, "ramp", 1);
+    snprintf(od, sizeof od, "%s/ramp", tmpdir);
+    const char *sets[] = {"open_boundaries[0].ramp=0.5", "open_boundaries[1].ramp=0.5",
+                          "time.end=1.0", "output.vtk=false",
+                          "measure=[inflow_volume, outflow_volume]"};
+    ry_case *c = NULL;
+    ry_sim sim;
+    memset(&sim, 0, sizeof sim);
+    ry_error err = {0};
+    assert_int_equal(ry_case_load(&c, cp, &err), RY_OK);
+    for (int k = 0; k < 2; ++k) assert_int_equal(ry_case_override(c, sets[k], &err), RY_OK);
+    ry_status st = ry_sim_setup(&sim, c, od, &err);
+    if (st != RY_OK) fail_msg("%s", err.msg);
+    assert_float_equal(sim.open[0].ramp, 0.5, 0);
+    double vmax = 0;
+    for (size_t i = 0; i < sim.ps.n; ++i)
+        if (sim.ps.kind[i] == RY_KIND_INLET) vmax = fmax(vmax, fabs(sim.ps.f[RY_F_VX][i]));
+    assert_true(vmax == 0);
+    size_t a, b;
+    first_two_fluid(&sim, &a, &b);
+    const long long ida = (long long)sim.ps.id[a];
+    sim.ps.f[RY_F_X][a] = 0.405; /* into the rate outlet's zone */
+    sim.t = 0.25;
+    assert_int_equal(ry_open_update(&sim, &err), RY_OK);
+    const double tau = ramped_time(0.25, 0.5), layer = 0.1 * 0.005;
+    for (size_t i = 0; i < sim.ps.n; ++i) {
+        if (sim.ps.kind[i] != RY_KIND_INLET) continue;
+        const double want =
+            (long long)sim.ps.id[i] == ida ? 0.1 * (0.5 + 0.01 * tau / layer) : 0.05;
+        assert_float_equal(sim.ps.f[RY_F_VX][i], want, 1e-12);
+    }
+    ry_sim_free(&sim);
+    ry_case_free(c);
+    ry_run_stats stats;
+    st = ry_run_case_file(cp, 5, sets, od, &sim, &stats, &err);
+    if (st != RY_OK) fail_msg("%s", err.msg);
+    ry_sim_free(&sim);
+    snprintf(sp, sizeof sp, "%s/series.csv", od);
+    ry_table s;
+    assert_int_equal(ry_table_read(&s, sp, &err), RY_OK);
+    double in = 0, out = 0, out_ramp = 0;
+    for (size_t r = 0; r < s.nrows; ++r) {
+        const double t = col_at(&s, r, "t"), q = 0.01 * ramped_time(t, 0.5);
+        const double lag = fabs(col_at(&s, r, "outflow_volume") - q) / layer;
+        in = fmax(in, fabs(col_at(&s, r, "inflow_volume") - q) / layer);
+        if (t >= 0.5 - 1e-9)
+            out = fmax(out, lag);
+        else
+            out_ramp = fmax(out_ramp, lag);
+    }
+    printf("channel, IISPH, inlet and rate outlet ramped over 0.5 s: inflow off Q tau by up to "
+           "%.2f layers to 1 s; outflow by %.2f from 0.5 s (%.2f during the ramp)\n",
+           in, out, out_ramp);
+    assert_true(col_at(&s, s.nrows - 1, "t") >= 1.0 - 1e-9);
+    assert_true(in <= 1.0);
+    assert_true(out <= 1.5);
+    ry_table_free(&s);
+}
+
 /* The neighbour list after in- and outflow (ry_sim_list_edit): the list of a search from the
  * reference positions, row for row, with the new particles' positions as theirs; no search. */
 static void assert_list_as_search(ry_sim *sim) {
@@ -426,7 +501,7 @@ int main(void) {
         cmocka_unit_test(test_outlet_conversions),  cmocka_unit_test(test_inlet_flow_rate),
         cmocka_unit_test(test_inlet_backflow),      cmocka_unit_test(test_list_after_inflow),
         cmocka_unit_test(test_channel_poiseuille),  cmocka_unit_test(test_rate_outlet_conversions),
-        cmocka_unit_test(test_channel_rate_outlet),
+        cmocka_unit_test(test_channel_rate_outlet), cmocka_unit_test(test_ramp),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     char cmd[300];
