@@ -80,7 +80,8 @@ int ry_cli_validate_eye_fine(const char *root, const char *out, int quick, int *
         for (int k = 0; k < NT + 3; ++k) fprintf(md, "---|");
         fprintf(md, "\n");
     }
-    for (int s = 0; s < ns; ++s) {
+    int interrupted = 0;
+    for (int s = 0; s < ns && !interrupted; ++s) {
         char odir[4096], sp[64];
         snprintf(odir, sizeof odir, "%s/eye_fine_%.3fmm", out, 1e3 * spacings[s]);
         snprintf(sp, sizeof sp, "spacing=%.10g", spacings[s]);
@@ -88,7 +89,9 @@ int ry_cli_validate_eye_fine(const char *root, const char *out, int quick, int *
         ry_sim sim;
         ry_run_stats stats;
         const ry_status rs = ry_cli_run_or_resume(cpath, 2, sets, odir, &sim, &stats, &err);
-        if (rs == RY_ERR_INTERRUPTED) { /* reported as far as it went; a failure */
+        /* interrupted: reported as far as it went, a failure, and the finer runs not started */
+        interrupted = rs == RY_ERR_INTERRUPTED;
+        if (interrupted) {
             fprintf(stderr, "ryushi: validate: %s; the same command goes on from there\n", err.msg);
             ++*failures;
         } else if (rs != RY_OK) {
