@@ -2,7 +2,7 @@
 # Checkpoints and restart: a run stopped (by step count or by SIGTERM) and continued with
 # --restart ends bitwise identical to an uninterrupted run (VTK files, .pvd, series.csv,
 # profiles), for each scheme (MPS included, and Oldroyd-B fluids in MPS and WCSPH), with
-# inflow and outflow, on another thread count too; a damaged newest checkpoint is skipped for
+# inflow and outflow (an inlet ramped up too), on another thread count too; a damaged newest checkpoint is skipped for
 # the one before it; a truncated or corrupted checkpoint is rejected by name; a restart with
 # other output and checkpoint intervals follows them from the checkpoint on.
 # usage: test_restart.sh RYUSHI SOURCE_DIR
@@ -145,6 +145,18 @@ run chp "$CH" $CHSET --set time.max_steps=555
 # shellcheck disable=SC2086
 "$RY" run "$CH" $CHSET --restart "$T/chp" > "$T/chp2.log" 2>&1 || bad "channel restart failed: $(cat "$T/chp2.log")"
 same "$T/ch" "$T/chp" "channel with inflow and outflow restarted at step 555"
+
+# 6b. The same channel with its inlet ramped up over 0.6 s (open_boundaries[0].ramp), stopped
+# during the ramp at step 300.
+# shellcheck disable=SC2086
+run chr "$CH" $CHSET --set "open_boundaries[0].ramp=0.6"
+[ "$rc" -eq 0 ] || bad "ramped channel exited $rc: $(cat "$T/chr.log")"
+# shellcheck disable=SC2086
+run chrp "$CH" $CHSET --set "open_boundaries[0].ramp=0.6" --set time.max_steps=300
+# shellcheck disable=SC2086
+"$RY" run "$CH" $CHSET --set "open_boundaries[0].ramp=0.6" --restart "$T/chrp" > "$T/chrp2.log" 2>&1 ||
+    bad "ramped channel restart failed: $(cat "$T/chrp2.log")"
+same "$T/chr" "$T/chrp" "channel with its inflow ramped up, restarted at step 300"
 
 # 7. Elastic solid (total-Lagrangian, kinetic damping) stopped at step 150.
 BEAM="$SRC/cases/cantilever.yaml"
