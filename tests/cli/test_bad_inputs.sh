@@ -51,6 +51,7 @@ case_ contact_angle_per_liquid_csf 2 ":6: key 'materials[0].contact_angle': a co
 case_ contact_angle_fluid_body 2 ":8: key 'bodies[0].contact_angle': applies to a body of kind wall"
 case_ contact_angle_too_many_sets 2 ":13: key 'bodies[8].contact_angle': at most 7 different sets of contact angles on wall bodies"
 case_ thin_fluid_body 2 ":8: key 'bodies[0].thin': applies to a body of kind wall"
+case_ measure_injected_kept_one_material 2 ":6: key 'measure[1]': measurement 'injected_kept' needs two materials (the second is the injected one)"
 case_ measure_polymer_stress_newtonian 2 ":7: key 'measure[1]': measurement 'max_polymer_stress' needs a visco-elastic material (rheology model oldroyd_b or giesekus)"
 case_ measure_droplet_without_section 2 ":8: key 'measure[1]': the droplet measurements need the case section 'droplet' (material, tip)"
 case_ stop_when_not_measured 2 ":9: key 'time.stop_when.quantity': 'front_x' is not measured (add it to 'measure')"
