@@ -26,16 +26,16 @@ static int flow_axis(const double *v, int dim, int *sign) {
 /* The share of an inlet's velocity at time t: 1, or with a ramp T the half cosine
  * (1 - cos(pi t / T)) / 2 up to T, which starts and ends the rise without a jump in the
  * acceleration. */
+static const double pi = 3.14159265358979323846;
 static double ramp_share(const ry_open_boundary *b, double t) {
     if (!(b->ramp > 0) || t >= b->ramp) return 1.0;
-    return t <= 0 ? 0.0 : 0.5 * (1.0 - cos(3.14159265358979323846 * t / b->ramp));
+    return t <= 0 ? 0.0 : 0.5 * (1.0 - cos(pi * t / b->ramp));
 }
 
 /* The time integral of ramp_share from 0 to t: the volume through the zone over U A. */
 static double ramp_time(const ry_open_boundary *b, double t) {
     if (!(b->ramp > 0)) return t;
     if (t >= b->ramp) return t - 0.5 * b->ramp;
-    const double pi = 3.14159265358979323846;
     return t <= 0 ? 0.0 : 0.5 * t - 0.5 * b->ramp / pi * sin(pi * t / b->ramp);
 }
 
@@ -446,8 +446,8 @@ ry_status ry_open_update(ry_sim *sim, ry_error *err) {
             for (int f = 0; f < ps->nfields; ++f)
                 if (ps->f[f]) ps->f[f][j] = ps->f[f][i];
             ps->f[RY_F_X + b->axis][j] -= (double)b->sign * (b->hi[b->axis] - b->lo[b->axis]);
-            for (int d = 0; d < dim; ++d)
-                ps->f[RY_F_VX + d][j] = b->velocity[d] * ramp_share(b, sim->t);
+            /* (during a ramp, ramp_speeds below sets its share) */
+            for (int d = 0; d < dim; ++d) ps->f[RY_F_VX + d][j] = b->velocity[d];
             ps->kind[j] = RY_KIND_INLET;
             ps->material[j] = (uint8_t)b->material;
         }
